@@ -1,0 +1,112 @@
+/**
+ * Kinematic limits, normalised, and their projection onto a direction of travel.
+ *
+ * Two families of limit may be given together (Klipper uses the first, GRBL the second):
+ *  - a scalar bounds the magnitude of the vector: |v| ≤ V, |a| ≤ A;
+ *  - a per-axis array bounds each component: |vᵢ| ≤ Vᵢ, |aᵢ| ≤ Aᵢ.
+ *
+ * Along a straight segment with unit direction u, the velocity vector is v·u and
+ * the acceleration vector is a·u (a = s″). So the scalar bounds give |v| ≤ V and
+ * the per-axis bounds give |v|·|uᵢ| ≤ Vᵢ, that is |v| ≤ Vᵢ/|uᵢ|. The limit along
+ * the path is the smallest of these: see projectLimit().
+ */
+import { configError } from '../errors.ts';
+import type { LimitsConfig } from './types.ts';
+
+export interface ResolvedLimits {
+  /** mm/s bound on |v|; Infinity when only per-axis limits were given. */
+  maxSpeed: number;
+  /** mm/s² bound on |a|; Infinity when only per-axis limits were given. */
+  maxAccel: number;
+  /** mm/s per axis; Infinity where unbounded. */
+  axisMaxSpeed: number[];
+  /** mm/s² per axis; Infinity where unbounded. */
+  axisMaxAccel: number[];
+  /** mm */
+  junctionDeviation: number;
+}
+
+export const DEFAULT_JUNCTION_DEVIATION_MM = 0.05;
+
+function positive(field: string, value: unknown): number {
+  if (typeof value !== 'number' || !Number.isFinite(value) || value <= 0) {
+    throw configError(field, `must be a positive finite number, got ${String(value)}`);
+  }
+  return value;
+}
+
+function perAxis(field: string, value: unknown, axes: number): number[] {
+  if (!Array.isArray(value)) throw configError(field, 'must be an array with one limit per motion axis');
+  if (value.length !== axes) {
+    throw configError(field, `has ${value.length} entries but there are ${axes} motion axes`);
+  }
+  return value.map((v, i) => positive(`${field}[${i}]`, v));
+}
+
+/** Splits a `number | number[]` limit and its explicit per-axis twin into (scalar, perAxis). */
+function resolvePair(
+  scalarField: string,
+  scalar: unknown,
+  axisField: string,
+  axis: unknown,
+  axes: number,
+): { magnitude: number; perAxis: number[] } {
+  let magnitude = Infinity;
+  let axisLimits: number[] | undefined;
+  if (Array.isArray(scalar)) {
+    axisLimits = perAxis(scalarField, scalar, axes);
+  } else if (scalar !== undefined) {
+    magnitude = positive(scalarField, scalar);
+  }
+  if (axis !== undefined) {
+    if (axisLimits) throw configError(axisField, `per-axis limits are already given as an array in ${scalarField}`);
+    axisLimits = perAxis(axisField, axis, axes);
+  }
+  if (magnitude === Infinity && !axisLimits) {
+    throw configError(scalarField, `is required: give a number (bound on the vector magnitude) or an array (one bound per axis)`);
+  }
+  return { magnitude, perAxis: axisLimits ?? new Array<number>(axes).fill(Infinity) };
+}
+
+export function resolveLimits(limits: LimitsConfig | undefined, axes: number, field = 'limits'): ResolvedLimits {
+  if (limits === null || typeof limits !== 'object') throw configError(field, 'must be an object');
+  const known = new Set(['maxVelocity', 'maxAcceleration', 'axisMaxVelocity', 'axisMaxAcceleration', 'junctionDeviation']);
+  for (const key of Object.keys(limits)) {
+    if (!known.has(key)) throw configError(`${field}.${key}`, `is not a known limit (known: ${[...known].join(', ')})`);
+  }
+  const v = resolvePair(`${field}.maxVelocity`, limits.maxVelocity, `${field}.axisMaxVelocity`, limits.axisMaxVelocity, axes);
+  const a = resolvePair(
+    `${field}.maxAcceleration`,
+    limits.maxAcceleration,
+    `${field}.axisMaxAcceleration`,
+    limits.axisMaxAcceleration,
+    axes,
+  );
+  const junctionDeviation =
+    limits.junctionDeviation === undefined
+      ? DEFAULT_JUNCTION_DEVIATION_MM
+      : positive(`${field}.junctionDeviation`, limits.junctionDeviation);
+  return {
+    maxSpeed: v.magnitude,
+    maxAccel: a.magnitude,
+    axisMaxSpeed: v.perAxis,
+    axisMaxAccel: a.perAxis,
+    junctionDeviation,
+  };
+}
+
+/**
+ * The largest scalar L such that a vector L·u respects both the magnitude bound and
+ * every per-axis bound: min(magnitude, minᵢ perAxisᵢ/|uᵢ|). `u` is a unit vector.
+ */
+export function projectLimit(magnitude: number, perAxisLimits: readonly number[], u: readonly number[]): number {
+  let limit = magnitude;
+  for (let i = 0; i < u.length; i++) {
+    const c = Math.abs(u[i]);
+    if (c > 0) {
+      const axisLimit = perAxisLimits[i] / c;
+      if (axisLimit < limit) limit = axisLimit;
+    }
+  }
+  return limit;
+}

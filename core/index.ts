@@ -1,0 +1,24 @@
+/**
+ * The MAXL core: the trajectory author. Pure TypeScript with no DOM; it runs in
+ * Node, in a Web Worker or in a page.
+ */
+export { createMAXL, Maxl, type MaxlOptions } from './maxl.ts';
+export { planPath, type PlannedPath, type PlannedSegment, type PathMove, type PathSample } from './plan/planPath.ts';
+export { MaxlError, type MaxlErrorCode } from './errors.ts';
+export { resolveConfig } from './config/validate.ts';
+export type {
+  MaxlConfig,
+  LimitsConfig,
+  TransformConfig,
+  SubscriptionConfig,
+  ResolvedConfig,
+  TrackInfo,
+  TrackKind,
+} from './config/types.ts';
+export type { Move } from './trajectory/moves.ts';
+export type { MoveEvents, EvaluatorState, EventEvaluatorSpec, EventTrack } from './trajectory/events.ts';
+export { TrajectoryQueue, type MoveReceipt, type QueueEvent, type QueueListener } from './trajectory/queue.ts';
+export { Segment, type SegmentState } from './trajectory/segment.ts';
+export type { TrajectorySample } from './trajectory/tracks.ts';
+export type { Phase } from './plan/phases.ts';
+export { evaluatePhases } from './plan/phases.ts';

@@ -1,0 +1,160 @@
+/**
+ * From a move request (an end position, a speed cap, event values) to segments:
+ * validation, soft limits, zero-length skipping, subdivision for nonlinear
+ * transforms, and each segment's planner inputs (limits projected on its direction,
+ * the junction cap with the segment before).
+ */
+import { MaxlError } from '../errors.ts';
+import { projectLimit } from '../config/limits.ts';
+import type { ResolvedConfig } from '../config/types.ts';
+import { junctionSpeed2 } from '../plan/junction.ts';
+import { resolveMoveEvents, type MoveEvents, type ResolvedEventSpec } from './events.ts';
+import { Segment } from './segment.ts';
+import { actuatorPosition, subdivisionFractions } from './transforms.ts';
+
+export interface Move {
+  /** mm: one value per motion axis, or an object naming only the axes that move. */
+  endPosition: number[] | Record<string, number>;
+  /** mm/s cap on the speed along this move. Defaults to the machine limits. */
+  maxVelocity?: number;
+  eventChannels?: MoveEvents;
+}
+
+/** A move that passed validation, not yet turned into segments. */
+export interface ValidatedMove {
+  end: number[];
+  maxVelocity: number;
+  events: ResolvedEventSpec[];
+}
+
+/** Lengths below this (mm) are treated as zero: such moves are skipped and counted. */
+export const ZERO_LENGTH_MM = 1e-9;
+
+function finite(field: string, value: unknown): number {
+  if (typeof value !== 'number' || !Number.isFinite(value)) {
+    throw new MaxlError('MOVE_INVALID', `must be a finite number, got ${String(value)}`, field);
+  }
+  return value;
+}
+
+/**
+ * Checks a move against the config and the position it starts from. Throws a
+ * MaxlError (MOVE_INVALID, MOVE_DIMENSION or SOFT_LIMIT) and changes nothing on
+ * bad input.
+ */
+export function validateMove(config: ResolvedConfig, move: Move, from: readonly number[]): ValidatedMove {
+  if (move === null || typeof move !== 'object') throw new MaxlError('MOVE_INVALID', 'a move must be an object with an endPosition');
+  const axes = config.motionAxes;
+  const target = move.endPosition;
+  let end: number[];
+  if (Array.isArray(target)) {
+    if (target.length !== axes.length) {
+      throw new MaxlError(
+        'MOVE_DIMENSION',
+        `has ${target.length} values but the machine has ${axes.length} motion axes (${axes.join(', ')})`,
+        'endPosition',
+      );
+    }
+    end = target.map((v, i) => finite(`endPosition[${i}]`, v));
+  } else if (target !== null && typeof target === 'object') {
+    end = [...from];
+    for (const [name, v] of Object.entries(target)) {
+      const i = axes.indexOf(name);
+      if (i < 0) throw new MaxlError('MOVE_DIMENSION', `"${name}" is not a motion axis (${axes.join(', ')})`, 'endPosition');
+      end[i] = finite(`endPosition.${name}`, v);
+    }
+  } else {
+    throw new MaxlError('MOVE_INVALID', 'must be an array of positions or an object of axis positions', 'endPosition');
+  }
+  for (let i = 0; i < axes.length; i++) {
+    if (end[i] < config.softMin[i] || end[i] > config.softMax[i]) {
+      throw new MaxlError(
+        'SOFT_LIMIT',
+        `${axes[i]} = ${end[i]} mm is outside the soft limits [${config.softMin[i]}, ${config.softMax[i]}] mm`,
+        `endPosition.${axes[i]}`,
+      );
+    }
+  }
+  let maxVelocity = Infinity;
+  if (move.maxVelocity !== undefined) {
+    maxVelocity = finite('maxVelocity', move.maxVelocity);
+    if (maxVelocity <= 0) throw new MaxlError('MOVE_INVALID', 'must be positive (mm/s)', 'maxVelocity');
+  }
+  return { end, maxVelocity, events: resolveMoveEvents(move.eventChannels, config.eventChannels) };
+}
+
+export function distance(a: readonly number[], b: readonly number[]): number {
+  let d2 = 0;
+  for (let i = 0; i < a.length; i++) {
+    const d = b[i] - a[i];
+    d2 += d * d;
+  }
+  return Math.sqrt(d2);
+}
+
+/** What the next segment needs to know of the one before it. */
+export interface PathTail {
+  position: number[];
+  /** Unit direction of the last segment, or null after rest with no segment. */
+  unit: number[] | null;
+  cruise2: number;
+}
+
+/**
+ * Splits a validated move into segments (one, unless a nonlinear transform needs
+ * more), each with its planner inputs. Returns [] for a zero-length move.
+ */
+export function segmentsForMove(
+  config: ResolvedConfig,
+  move: ValidatedMove,
+  tail: PathTail,
+  ids: { nextSegmentId: number; moveId: number },
+): Segment[] {
+  const p0 = tail.position;
+  const total = distance(p0, move.end);
+  if (total < ZERO_LENGTH_MM) return [];
+  const unit = move.end.map((v, i) => (v - p0[i]) / total);
+  const limits = config.limits;
+  const speed = Math.min(move.maxVelocity, projectLimit(limits.maxSpeed, limits.axisMaxSpeed, unit));
+  const cruise2 = speed * speed;
+  const accel = projectLimit(limits.maxAccel, limits.axisMaxAccel, unit);
+
+  const fractions = subdivisionFractions(config.transforms, p0, move.end);
+  const points = fractions.map((f) => p0.map((v, i) => v + (move.end[i] - v) * f));
+  points[points.length - 1] = [...move.end]; // exact end, no rounding
+  const actuators = points.map((p) => actuatorPosition(config.transforms, p));
+
+  const segments: Segment[] = [];
+  let prevUnit = tail.unit;
+  let prevCruise2 = tail.cruise2;
+  for (let k = 0; k + 1 < points.length; k++) {
+    const start = points[k];
+    const end = points[k + 1];
+    const length = (fractions[k + 1] - fractions[k]) * total;
+    // Within one move all pieces share the direction; only the first meets a corner.
+    const junction2 = prevUnit === null ? 0 : k === 0 ? junctionSpeed2(prevUnit, unit, limits) : Infinity;
+    const maxEntry2 = Math.min(junction2, cruise2, prevUnit === null ? 0 : prevCruise2);
+    const a0 = actuators[k];
+    const a1 = actuators[k + 1];
+    segments.push(
+      new Segment({
+        id: ids.nextSegmentId + k,
+        moveId: ids.moveId,
+        start,
+        end,
+        unit,
+        length,
+        moveOffset: fractions[k] * total,
+        actuatorStart: a0,
+        actuatorRate: a0.map((v, j) => (a1[j] - v) / length),
+        events: move.events,
+        accel,
+        cruise2,
+        maxEntry2,
+      }),
+    );
+    prevUnit = unit;
+    prevCruise2 = cruise2;
+  }
+  return segments;
+}

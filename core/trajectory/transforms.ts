@@ -1,0 +1,160 @@
+/**
+ * Transforms map motion axes (cartesian, say x and y) to actuator axes (the
+ * motors, say a and b). Both kinds of track are available to readers.
+ *
+ *  - CoreXY and H-bot: a = x + y, b = x − y. The two share kinematics; they differ
+ *    mechanically (an H-bot's belt racks the gantry).
+ *  - linear: any matrix, to = M·from.
+ *  - function: any function. Treated as nonlinear unless declared linear.
+ *
+ * A linear map sends a line to a line, so an actuator track over a segment is
+ * exactly T(start) + (M·u)·s. A nonlinear map bends lines into curves, so the
+ * segment is subdivided until the straight chords in actuator space stay within
+ * the transform's tolerance of the true curve, at every path position s (the
+ * error that matters is where the motor is at a given moment, not the chord's
+ * distance to the curve).
+ */
+import { configError } from '../errors.ts';
+import type { TransformConfig } from '../config/types.ts';
+
+export const DEFAULT_TRANSFORM_TOLERANCE_MM = 0.01;
+/** Subdivision never goes deeper than 2^MAX_DEPTH pieces per segment, even near a singularity. */
+const MAX_DEPTH = 24;
+
+export interface ResolvedTransform {
+  type: TransformConfig['type'];
+  /** Indices of the input motion axes. */
+  inputs: number[];
+  /** Names of the output actuator axes. */
+  outputs: string[];
+  linear: boolean;
+  /** Output units (mm for a motor on a belt). */
+  tolerance: number;
+  evaluate(input: readonly number[]): number[];
+}
+
+function matrixTransform(matrix: number[][]): (input: readonly number[]) => number[] {
+  return (input) => matrix.map((row) => row.reduce((acc, m, i) => acc + m * input[i], 0));
+}
+
+const COREXY = [
+  [1, 1],
+  [1, -1],
+];
+
+export function resolveTransforms(configs: TransformConfig[] | undefined, motionAxes: string[]): ResolvedTransform[] {
+  if (configs === undefined) return [];
+  if (!Array.isArray(configs)) throw configError('transforms', 'must be an array');
+  return configs.map((t, n) => {
+    const field = `transforms[${n}]`;
+    if (t === null || typeof t !== 'object') throw configError(field, 'must be an object');
+    if (!Array.isArray(t.from) || t.from.length === 0) throw configError(`${field}.from`, 'must be a non-empty array of motion axis names');
+    if (!Array.isArray(t.to) || t.to.length === 0) throw configError(`${field}.to`, 'must be a non-empty array of actuator axis names');
+    const inputs = t.from.map((name, i) => {
+      const index = motionAxes.indexOf(name);
+      if (index < 0) throw configError(`${field}.from[${i}]`, `"${String(name)}" is not a motion axis (motion axes: ${motionAxes.join(', ')})`);
+      return index;
+    });
+    const tolerance = t.type === 'function' && t.tolerance !== undefined ? t.tolerance : DEFAULT_TRANSFORM_TOLERANCE_MM;
+    if (!(typeof tolerance === 'number' && tolerance > 0 && Number.isFinite(tolerance))) {
+      throw configError(`${field}.tolerance`, 'must be a positive number (output units, mm by default)');
+    }
+    switch (t.type) {
+      case 'corexy':
+      case 'hbot':
+        if (t.from.length !== 2) throw configError(`${field}.from`, `${t.type} takes 2 inputs, got ${t.from.length}`);
+        if (t.to.length !== 2) throw configError(`${field}.to`, `${t.type} gives 2 outputs, got ${t.to.length}`);
+        return { type: t.type, inputs, outputs: [...t.to], linear: true, tolerance, evaluate: matrixTransform(COREXY) };
+      case 'linear': {
+        const m = t.matrix;
+        if (!Array.isArray(m) || m.length !== t.to.length) {
+          throw configError(`${field}.matrix`, `must have one row per output (${t.to.length})`);
+        }
+        m.forEach((row, r) => {
+          if (!Array.isArray(row) || row.length !== t.from.length) {
+            throw configError(`${field}.matrix[${r}]`, `must have one column per input (${t.from.length})`);
+          }
+          row.forEach((v, c) => {
+            if (typeof v !== 'number' || !Number.isFinite(v)) throw configError(`${field}.matrix[${r}][${c}]`, 'must be a finite number');
+          });
+        });
+        return { type: 'linear', inputs, outputs: [...t.to], linear: true, tolerance, evaluate: matrixTransform(m) };
+      }
+      case 'function': {
+        if (typeof t.fn !== 'function') throw configError(`${field}.fn`, 'must be a function from inputs to outputs');
+        const fn = t.fn;
+        const outputs = t.to.length;
+        const evaluate = (input: readonly number[]): number[] => {
+          const out = fn(input);
+          if (!Array.isArray(out) || out.length !== outputs) {
+            throw configError(`${field}.fn`, `must return ${outputs} numbers, returned ${Array.isArray(out) ? out.length : typeof out}`);
+          }
+          return out;
+        };
+        return { type: 'function', inputs, outputs: [...t.to], linear: t.linear === true, tolerance, evaluate };
+      }
+      default:
+        throw configError(`${field}.type`, `"${String((t as { type: unknown }).type)}" is not a transform type (corexy, hbot, linear, function)`);
+    }
+  });
+}
+
+/** Every actuator axis's position at the motion-space point p, in config order. */
+export function actuatorPosition(transforms: readonly ResolvedTransform[], p: readonly number[]): number[] {
+  const out: number[] = [];
+  for (const t of transforms) {
+    const input = t.inputs.map((i) => p[i]);
+    for (const v of t.evaluate(input)) out.push(v);
+  }
+  return out;
+}
+
+function lerp(a: readonly number[], b: readonly number[], f: number): number[] {
+  return a.map((v, i) => v + (b[i] - v) * f);
+}
+
+/**
+ * Fractions 0 = f₀ < f₁ < … < fₙ = 1 along the line p0→p1 such that, for every
+ * nonlinear transform T and every piece [fₖ, fₖ₊₁], the chord from T(p(fₖ)) to
+ * T(p(fₖ₊₁)) stays within T's tolerance of T(p(f)) at the same f, on every output.
+ *
+ * Each piece is tested at ¼, ½ and ¾ of its span and halved while any error
+ * exceeds the tolerance. For a smooth T the chord error on a short piece is close
+ * to a parabola peaking near the middle, so those three points bound it well;
+ * tests check the result by dense sampling.
+ */
+export function subdivisionFractions(
+  transforms: readonly ResolvedTransform[],
+  p0: readonly number[],
+  p1: readonly number[],
+): number[] {
+  const nonlinear = transforms.filter((t) => !t.linear);
+  if (nonlinear.length === 0) return [0, 1];
+  const at = (f: number) => {
+    const p = lerp(p0, p1, f);
+    return nonlinear.map((t) => t.evaluate(t.inputs.map((i) => p[i])));
+  };
+  const fractions = [0];
+  const split = (f0: number, y0: number[][], f1: number, y1: number[][], depth: number): void => {
+    let worst = 0;
+    for (const q of [0.25, 0.5, 0.75]) {
+      const y = at(f0 + (f1 - f0) * q);
+      nonlinear.forEach((t, k) => {
+        for (let o = 0; o < y[k].length; o++) {
+          const chord = y0[k][o] + (y1[k][o] - y0[k][o]) * q;
+          worst = Math.max(worst, Math.abs(y[k][o] - chord) / t.tolerance);
+        }
+      });
+    }
+    if (worst <= 1 || depth >= MAX_DEPTH) {
+      fractions.push(f1);
+      return;
+    }
+    const fm = (f0 + f1) / 2;
+    const ym = at(fm);
+    split(f0, y0, fm, ym, depth + 1);
+    split(fm, ym, f1, y1, depth + 1);
+  };
+  split(0, at(0), 1, at(1), 0);
+  return fractions;
+}
