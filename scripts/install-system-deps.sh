@@ -8,7 +8,9 @@
 #   arduino-core-avr         the real Arduino AVR core
 #   arduino-mk               Arduino.mk, the makefile that builds sketches
 #   simavr libsimavr-dev     runs AVR ELFs for the firmware benchmark
-#   cmake libgtest-dev       host build of the firmware library and its GoogleTest suite
+#   cmake libgtest-dev nlohmann-json3-dev
+#                            host build of the firmware library, its GoogleTest suite,
+#                            and JSON for reading the shared test vectors
 #   clang lld wasi-libc libc++-14-dev-wasm32 libc++abi-14-dev-wasm32
 #   libclang-rt-14-dev-wasm32
 #                            wasm32 builds of the firmware for the simulator
@@ -19,7 +21,7 @@ set -euo pipefail
 PACKAGES=(
   chromium
   gcc-avr avr-libc arduino-core-avr arduino-mk simavr libsimavr-dev
-  cmake make g++ libgtest-dev pkg-config
+  cmake make g++ libgtest-dev nlohmann-json3-dev pkg-config
   clang lld wasi-libc libc++-14-dev-wasm32 libc++abi-14-dev-wasm32 libclang-rt-14-dev-wasm32
   libclang-rt-14-dev
   valgrind
