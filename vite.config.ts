@@ -13,5 +13,6 @@ export default defineConfig({
   test: {
     root: here,
     include: ['core/**/*.test.ts'],
+    setupFiles: ['core/testing/setup.ts'],
   },
 });

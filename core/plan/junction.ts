@@ -14,7 +14,13 @@
  * Going round that arc at speed v needs a centripetal acceleration v²/R, and
  * bounding it by the acceleration limit a gives
  *   v² ≤ a·R = a·δ·sin(θ/2) / (1 − sin(θ/2)).
- * The half-angle comes from cos θ without trigonometry: sin(θ/2) = √((1 − cos θ)/2).
+ * The half-angle comes from the vectors without trigonometry, and without the
+ * cancellation of √((1 − cos θ)/2) near a reversal: −u_in and u_out are unit
+ * vectors θ apart, so |u_out − (−u_in)| = 2·sin(θ/2) and |u_out + (−u_in)| =
+ * 2·cos(θ/2). Writing 1 − sin(θ/2) = cos²(θ/2)/(1 + sin(θ/2)) keeps the straight-on
+ * case exact too:
+ *   v² = a·δ·sin(θ/2)·(1 + sin(θ/2)) / cos²(θ/2),
+ * infinite (no limit) for a straight line and 0 for a full reversal.
  *
  * At the corner the velocity vector turns from v·u_in to v·u_out, a change along
  * u_out − u_in, so the acceleration limit used is the one projected on that
@@ -22,29 +28,23 @@
  */
 import { projectLimit, type ResolvedLimits } from '../config/limits.ts';
 
-/** Below this, cos θ is treated as a straight line (no limit) or a reversal (stop). */
-const STRAIGHT_EPS = 1e-12;
-
 /** Max junction speed² (mm²/s²) between unit directions uIn and uOut. Infinity for a straight line. */
 export function junctionSpeed2(uIn: readonly number[], uOut: readonly number[], limits: ResolvedLimits): number {
-  let dot = 0;
-  for (let i = 0; i < uIn.length; i++) dot += uIn[i] * uOut[i];
-  const cosTheta = -dot;
-  if (cosTheta <= -1 + STRAIGHT_EPS) return Infinity; // straight on
-  if (cosTheta >= 1 - STRAIGHT_EPS) return 0; // full reversal
-
-  // Direction of the velocity change at the corner.
-  const change = new Array<number>(uIn.length);
-  let norm2 = 0;
+  let sum2 = 0;
+  let diff2 = 0;
   for (let i = 0; i < uIn.length; i++) {
+    const s = uOut[i] + uIn[i];
     const d = uOut[i] - uIn[i];
-    change[i] = d;
-    norm2 += d * d;
+    sum2 += s * s;
+    diff2 += d * d;
   }
-  const norm = Math.sqrt(norm2);
-  for (let i = 0; i < change.length; i++) change[i] /= norm;
+  const sinHalf = Math.sqrt(sum2) / 2;
+  const cosHalf = Math.sqrt(diff2) / 2;
+  if (cosHalf === 0) return Infinity; // straight on
+  if (sinHalf === 0) return 0; // full reversal
+  // Direction of the velocity change at the corner: (u_out − u_in) / |u_out − u_in|.
+  const change = new Array<number>(uIn.length);
+  for (let i = 0; i < uIn.length; i++) change[i] = (uOut[i] - uIn[i]) / (2 * cosHalf);
   const accel = projectLimit(limits.maxAccel, limits.axisMaxAccel, change);
-
-  const sinHalf = Math.sqrt((1 - cosTheta) / 2);
-  return (accel * limits.junctionDeviation * sinHalf) / (1 - sinHalf);
+  return (accel * limits.junctionDeviation * sinHalf * (1 + sinHalf)) / (cosHalf * cosHalf);
 }

@@ -29,13 +29,18 @@
  *   b_k = min over j ≥ k of ( cap_j + 2·Σ_{k ≤ i < j} a_i·L_i ),   with cap_end = 0.
  * Write W_k = Σ_{i < k} a_i·L_i (the "work" prefix) and C_j = cap_j + 2·W_j. Then
  *   b_k = ( min over j ≥ k of C_j ) − 2·W_k.
- * So the backward pass is a suffix minimum of C. Appending a block changes only the
- * tail: the old end junction gets its real cap instead of 0 (C rises) and a new end
- * junction is added. A monotonic deque of the suffix-minimum candidates (each with
- * a smaller C than every candidate after it) absorbs an append in O(1) amortised:
- * each junction is pushed once and popped at most once. A GRBL-style backward pass
- * that walks from the tail to the planned pointer costs O(blocks within a braking
- * distance) per append instead; on a fine spiral that is ~50 blocks.
+ * So the backward pass is a suffix minimum of C. The end junction is special: its
+ * C = 2·W_end (rest) rises when a block is appended, and that junction then turns
+ * into an interior one whose C (its real cap) never changes again. So the interior
+ * junctions live in a monotonic deque of suffix-minimum candidates (each with a
+ * smaller C than every candidate after it), and the end's C is compared on the fly:
+ *   b_k = min( min over interior j ≥ k of C_j,  2·W_end ) − 2·W_k.
+ * An append pushes one interior junction, popping the candidates it dominates: each
+ * junction is pushed once and popped at most once, so O(1) amortised. (Keeping the
+ * end in the deque would be wrong: a rest value that pops candidates and later
+ * rises would have lost them.) A GRBL-style backward pass that walks from the tail
+ * to the planned pointer costs O(blocks within a braking distance) per append
+ * instead; on a fine spiral that is ~50 blocks.
  *
  * ## The forward pass and the planned pointer
  *   f_{k+1} = min( b_{k+1}, f_k + 2·a_k·L_k ),   f_front = the fixed front speed.
@@ -44,8 +49,8 @@
  *   - f_k + 2·a_k·L_k ≤ b_{k+1}: the block is acceleration limited, and later
  *     blocks only ever raise b; or
  *   - b_{k+1} is set by an interior junction's cap rather than by the end's rest:
- *     appends only raise the end's C and add larger ones after it (W grows), so
- *     that minimum stays.
+ *     appends only raise the end's C (W grows) and add interior candidates after
+ *     it whose C is at least the end's old value, so that minimum stays.
  * These are GRBL's two conditions (full acceleration, or an entry at its maximum)
  * read off the deque. Blocks behind the pointer are "planned": their speeds are
  * final and their profiles can be timed, evaluated and sent. Each block crosses
@@ -88,7 +93,7 @@ export class LookaheadPlanner<B extends PlanBlock> {
   private frontEntry2 = 0;
   /** W at the end junction. */
   private endWork = 0;
-  /** Suffix-minimum candidates: junction indices (absolute) and their C values. */
+  /** Suffix-minimum candidates among interior junctions: indices (absolute) and C values. */
   private candJunction: number[] = [];
   private candValue: number[] = [];
   private candHead = 0;
@@ -128,15 +133,11 @@ export class LookaheadPlanner<B extends PlanBlock> {
       // The new block is the front: its entry is fixed, so junction k needs no candidate.
       block.entry2 = this.frontEntry2;
     } else {
-      // Junction k was the end of the path, capped at rest (C = 2·W_k), and is the
-      // last candidate. It now gets its real cap, which can only raise C.
-      this.candJunction.pop();
-      this.candValue.pop();
+      // Junction k was the end of the path, at rest; it is now interior, with its real cap.
       this.pushCandidate(k, block.maxEntry2 + 2 * block.work);
     }
     this.endWork = block.work + block.accel * block.length;
     this.blocks.push(block);
-    this.pushCandidate(k + 1, 2 * this.endWork); // the new end, at rest
     this.advance(false);
   }
 
@@ -255,17 +256,19 @@ export class LookaheadPlanner<B extends PlanBlock> {
   }
 
   /**
-   * b at a junction: min over later candidates of C − 2·W. `consume` drops the
-   * candidates before it, which the forward pass (monotone) never needs again.
-   * Also returns whether the minimum is the end-of-path rest (then more blocks may raise it).
+   * b at a junction: min(later interior candidates' C, the end's 2·W_end) − 2·W.
+   * `consume` drops the candidates before it, which the forward pass (monotone)
+   * never needs again. Also returns whether the end-of-path rest sets the minimum
+   * (then more blocks may raise it).
    */
   private backwardBound(junction: number, consume = true): { bound: number; setByEnd: boolean } {
     const js = this.candJunction;
     let h = this.candHead;
-    while (js[h] < junction) h++;
+    while (h < js.length && js[h] < junction) h++;
     if (consume) this.candHead = h;
-    const endJunction = this.first + this.size;
-    return { bound: this.candValue[h] - 2 * this.workAt(junction), setByEnd: js[h] === endJunction };
+    const interior = h < js.length ? this.candValue[h] : Infinity;
+    const end = 2 * this.endWork;
+    return { bound: Math.min(interior, end) - 2 * this.workAt(junction), setByEnd: end < interior };
   }
 
   /** Moves the planned pointer forward as far as the plan is final. */

@@ -110,7 +110,7 @@ export function sampleTimeline(
   const seg = segments[i];
   const local = (t - startOf(i)) * toSeconds;
   const duration = seg.phases ? phasesDuration(seg.phases) : 0;
-  if (local > duration && i === segments.length - 1) {
+  if (local >= duration && i === segments.length - 1) {
     const endActuator = seg.actuatorStart.map((p, j) => p + seg.actuatorRate[j] * lengthOf(seg));
     return restingSample(seg.end, endActuator, i);
   }
