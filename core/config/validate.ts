@@ -38,27 +38,35 @@ export function resolveConfig(config: MaxlConfig): ResolvedConfig {
   }
   const motionAxes = nameList('motionAxes', config.motionAxes, true);
   const eventChannels = nameList('eventChannels', config.eventChannels, false);
-  const limits = resolveLimits(config.limits, motionAxes.length);
-  const transforms = resolveTransforms(config.transforms, motionAxes);
-  const actuatorAxes: string[] = [];
-  transforms.forEach((t, n) => t.outputs.forEach((name, i) => actuatorAxes.push(checkName(`transforms[${n}].to[${i}]`, name))));
 
   // Every track name must be unique across axes, actuators, channels and path tracks.
-  const tracks: TrackInfo[] = [];
   const owner = new Map<string, string>();
-  const claim = (name: string, field: string, info: TrackInfo) => {
+  const claim = (name: string, field: string) => {
     const previous = owner.get(name);
     if (previous !== undefined) throw configError(field, `"${name}" is already used by ${previous}`);
     owner.set(name, field);
-    tracks.push(info);
   };
   for (const name of PATH_TRACKS) owner.set(name, `the built-in ${name} track`);
-  motionAxes.forEach((name, i) => claim(name, `motionAxes[${i}]`, { name, kind: 'position', space: 'motion' }));
+  motionAxes.forEach((name, i) => claim(name, `motionAxes[${i}]`));
+  eventChannels.forEach((name, i) => claim(name, `eventChannels[${i}]`));
+
+  const limits = resolveLimits(config.limits, motionAxes.length);
+  const transforms = resolveTransforms(config.transforms, motionAxes);
+  const actuatorAxes: string[] = [];
   transforms.forEach((t, n) =>
-    t.outputs.forEach((name, i) => claim(name, `transforms[${n}].to[${i}]`, { name, kind: 'position', space: 'actuator' })),
+    t.outputs.forEach((name, i) => {
+      const field = `transforms[${n}].to[${i}]`;
+      claim(checkName(field, name), field);
+      actuatorAxes.push(name);
+    }),
   );
-  for (const name of PATH_TRACKS) tracks.push({ name, kind: name });
-  eventChannels.forEach((name, i) => claim(name, `eventChannels[${i}]`, { name, kind: 'event' }));
+
+  const tracks: TrackInfo[] = [
+    ...motionAxes.map((name): TrackInfo => ({ name, kind: 'position', space: 'motion' })),
+    ...actuatorAxes.map((name): TrackInfo => ({ name, kind: 'position', space: 'actuator' })),
+    ...PATH_TRACKS.map((name): TrackInfo => ({ name, kind: name })),
+    ...eventChannels.map((name): TrackInfo => ({ name, kind: 'event' })),
+  ];
 
   const subscriptions = resolveSubscriptions(config.subscriptions, new Set(tracks.map((t) => t.name)));
 
