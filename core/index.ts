@@ -20,5 +20,4 @@ export type { MoveEvents, EvaluatorState, EventEvaluatorSpec, EventTrack } from 
 export { TrajectoryQueue, type MoveReceipt, type QueueEvent, type QueueListener } from './trajectory/queue.ts';
 export { Segment, type SegmentState } from './trajectory/segment.ts';
 export type { TrajectorySample } from './trajectory/tracks.ts';
-export type { Phase } from './plan/phases.ts';
-export { evaluatePhases } from './plan/phases.ts';
+export { evaluateTiming, phasesOf, timingDuration, type Phase, type Timing } from './plan/phases.ts';

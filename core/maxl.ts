@@ -8,24 +8,22 @@ import type { MaxlConfig, ResolvedConfig } from './config/types.ts';
 import { MaxlError } from './errors.ts';
 import type { Move, ValidatedMove } from './trajectory/moves.ts';
 import { TrajectoryQueue, type MoveReceipt } from './trajectory/queue.ts';
-import type { Segment } from './trajectory/segment.ts';
-import { restingSample, sampleTimeline, segmentIndexAt, type TrajectorySample } from './trajectory/tracks.ts';
+import { TrajectoryHistory } from './trajectory/history.ts';
+import { restingSample, type TrajectorySample } from './trajectory/tracks.ts';
 import { actuatorPosition } from './trajectory/transforms.ts';
 
 export interface MaxlOptions {
   /** mm per motion axis where the machine starts. Default: all zeros. */
   initialPosition?: number[];
-  /** How many transmitted segments to keep for sampling the past. Default 100 000. */
+  /** How many transmitted segments the as-planned history keeps for sampling the past. Default 100 000. */
   historyLimit?: number;
 }
 
 export class Maxl {
   readonly config: ResolvedConfig;
   readonly queue: TrajectoryQueue;
-  /** Transmitted and historical segments, oldest first, at most historyLimit. */
-  private timeline: Segment[] = [];
-  private timelineHead = 0;
-  private readonly historyLimit: number;
+  /** Transmitted and historical segments, oldest first, as compact records. */
+  readonly history: TrajectoryHistory;
   /** End of the last move still waiting for room, if any waits. */
   private pendingTail: number[] = [];
   private pendingCount = 0;
@@ -37,11 +35,9 @@ export class Maxl {
     if (start.length !== this.config.motionAxes.length || !start.every(Number.isFinite)) {
       throw new MaxlError('MOVE_DIMENSION', `must give ${this.config.motionAxes.length} finite positions`, 'initialPosition');
     }
-    this.historyLimit = options.historyLimit ?? 100_000;
-    this.queue = new TrajectoryQueue(this.config, start);
-    this.queue.subscribe((event) => {
-      if (event.type === 'transmitted') this.recordTransmitted(event.segments);
-    });
+    const c = this.config;
+    this.history = new TrajectoryHistory(c.motionAxes.length, c.actuatorAxes.length, c.eventChannels.length, options.historyLimit ?? 100_000);
+    this.queue = new TrajectoryQueue(this.config, start, (seg) => this.history.push(seg));
   }
 
   /** Where the next move will start: after the moves waiting for room, or at the queue's tail. */
@@ -54,9 +50,20 @@ export class Maxl {
    * resolves when the queue had room for it. Awaiting each call paces a loop to the
    * machine (paper, Listing 2). Calls that are not awaited keep their order.
    */
-  async addSegmentToQueue(move: Move): Promise<MoveReceipt> {
-    if (this.closed) throw new MaxlError('QUEUE_CLOSED', 'this MAXL instance was closed');
-    const validated: ValidatedMove = this.queue.validate(move, this.nextMoveStart);
+  addSegmentToQueue(move: Move): Promise<MoveReceipt> {
+    let validated: ValidatedMove;
+    try {
+      if (this.closed) throw new MaxlError('QUEUE_CLOSED', 'this MAXL instance was closed');
+      validated = this.queue.validate(move, this.nextMoveStart);
+    } catch (err) {
+      return Promise.reject(err);
+    }
+    // Fast path: room now and nobody waiting, so no extra turn of the event loop.
+    if (this.pendingCount === 0 && this.queue.hasRoom()) return Promise.resolve(this.queue.appendValidated(validated));
+    return this.appendWhenRoom(validated);
+  }
+
+  private async appendWhenRoom(validated: ValidatedMove): Promise<MoveReceipt> {
     this.pendingTail = validated.end;
     this.pendingCount++;
     try {
@@ -83,8 +90,7 @@ export class Maxl {
    * the machine rests at its start; between jobs, and after, at the last end.
    */
   sample(t_us: number): TrajectorySample {
-    const segs = this.timeline;
-    const s = sampleTimeline(segs, this.timelineHead, (i) => segs[i].startTime_us, t_us, 1e-6);
+    const s = this.history.sample(t_us);
     if (s !== null) return s;
     const p = this.queue.tailPosition;
     return restingSample(p, actuatorPosition(this.config.transforms, p));
@@ -106,27 +112,7 @@ export class Maxl {
   eventValue(channel: string, t_us: number): number {
     const c = this.config.eventChannels.indexOf(channel);
     if (c < 0) throw new MaxlError('CONFIG_INVALID', `"${channel}" is not an event channel`, 'channel');
-    const segs = this.timeline;
-    const found = segmentIndexAt(this.timelineHead, segs.length, (i) => segs[i].startTime_us, t_us);
-    if (found < 0) return 0;
-    const seg = segs[found];
-    let value = this.queue.eventValuesAtStart(seg)?.[c] ?? 0;
-    const local = (t_us - seg.startTime_us) * 1e-6;
-    for (const track of this.queue.eventTracksOf(seg)) {
-      if (track.channel !== c) continue;
-      for (let k = 0; k < track.times.length && track.times[k] <= local; k++) value = track.values[k];
-    }
-    return value;
-  }
-
-  private recordTransmitted(segments: readonly Segment[]): void {
-    for (const seg of segments) this.timeline.push(seg);
-    const excess = this.timeline.length - this.timelineHead - this.historyLimit;
-    if (excess > 0) this.timelineHead += excess;
-    if (this.timelineHead > 4096 && this.timelineHead * 2 > this.timeline.length) {
-      this.timeline = this.timeline.slice(this.timelineHead);
-      this.timelineHead = 0;
-    }
+    return this.history.eventValue(c, t_us);
   }
 }
 

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { createMAXL, MaxlError, type MaxlConfig } from '../index.ts';
+import { createMAXL, MaxlError, type MaxlConfig, type SubscriptionConfig } from '../index.ts';
 
 const good: MaxlConfig = {
   motionAxes: ['x', 'y'],
@@ -65,7 +65,7 @@ describe('config validation', () => {
     ['an unknown transform type', (c: MaxlConfig) => (c.transforms = [{ type: 'delta', from: ['x'], to: ['a'] } as never]), 'transforms[0].type'],
     ['an actuator named like an axis', (c: MaxlConfig) => (c.transforms = [{ type: 'corexy', from: ['x', 'y'], to: ['a', 'x'] }]), 'transforms[0].to[1]'],
     ['a subscription to an unknown track', (c: MaxlConfig) => (c.subscriptions![0].track = 'z'), 'subscriptions[0].track'],
-    ['a subscription without a reader', (c: MaxlConfig) => delete (c.subscriptions![1] as Partial<(typeof c.subscriptions)[0]>).reader, 'subscriptions[1].reader'],
+    ['a subscription without a reader', (c: MaxlConfig) => delete (c.subscriptions![1] as Partial<SubscriptionConfig>).reader, 'subscriptions[1].reader'],
     ['a subscription that is not an object', (c: MaxlConfig) => (c.subscriptions![2] = 'laser' as never), 'subscriptions[2]'],
     ['a subscription with an extra field', (c: MaxlConfig) => ((c.subscriptions![0] as unknown as Record<string, string>).kind = 'stepper'), 'subscriptions[0].kind'],
     ['one reader bound twice', (c: MaxlConfig) => c.subscriptions!.push({ device: 'motorOne', track: 'b', reader: 'stepper' }), 'subscriptions[4].reader'],

@@ -99,6 +99,8 @@ export class LookaheadPlanner<B extends PlanBlock> {
   private candHead = 0;
   /** Blocks [front, front + plannedCount) have a final entry and exit. */
   private plannedCount = 0;
+  /** Set by backwardBound(): whether the end-of-path rest set the bound it returned. */
+  private boundSetByEnd = false;
   private readonly onFinal: FinalListener<B> | undefined;
 
   constructor(onFinal?: FinalListener<B>) {
@@ -179,7 +181,7 @@ export class LookaheadPlanner<B extends PlanBlock> {
     const block = this.blocks[this.head];
     if (this.plannedCount > 0) return block.exit2;
     if (this.size === 1) return 0;
-    return Math.min(this.backwardBound(this.first + 1, false).bound, block.entry2 + 2 * block.accel * block.length);
+    return Math.min(this.backwardBound(this.first + 1, false), block.entry2 + 2 * block.accel * block.length);
   }
 
   /**
@@ -205,7 +207,7 @@ export class LookaheadPlanner<B extends PlanBlock> {
     if (count === 0) return e === 0;
     const front = this.blocks[this.head];
     if (e > front.maxEntry2 + slack) return false;
-    const after = count === 1 ? 0 : this.backwardBound(this.first + 1, false).bound;
+    const after = count === 1 ? 0 : this.backwardBound(this.first + 1, false);
     return e <= after + 2 * front.accel * front.length + slack;
   }
 
@@ -258,17 +260,18 @@ export class LookaheadPlanner<B extends PlanBlock> {
   /**
    * b at a junction: min(later interior candidates' C, the end's 2·W_end) − 2·W.
    * `consume` drops the candidates before it, which the forward pass (monotone)
-   * never needs again. Also returns whether the end-of-path rest sets the minimum
-   * (then more blocks may raise it).
+   * never needs again. Leaves in boundSetByEnd whether the end-of-path rest sets
+   * the minimum (then more blocks may raise it).
    */
-  private backwardBound(junction: number, consume = true): { bound: number; setByEnd: boolean } {
+  private backwardBound(junction: number, consume = true): number {
     const js = this.candJunction;
     let h = this.candHead;
     while (h < js.length && js[h] < junction) h++;
     if (consume) this.candHead = h;
     const interior = h < js.length ? this.candValue[h] : Infinity;
     const end = 2 * this.endWork;
-    return { bound: Math.min(interior, end) - 2 * this.workAt(junction), setByEnd: end < interior };
+    this.boundSetByEnd = end < interior;
+    return Math.min(interior, end) - 2 * this.workAt(junction);
   }
 
   /** Moves the planned pointer forward as far as the plan is final. */
@@ -283,8 +286,8 @@ export class LookaheadPlanner<B extends PlanBlock> {
         if (!toRest) break;
         exit2 = 0;
       } else {
-        const { bound, setByEnd } = this.backwardBound(this.first + (p + 1 - this.head));
-        if (setByEnd && reach2 > bound && !toRest) break;
+        const bound = this.backwardBound(this.first + (p + 1 - this.head));
+        if (this.boundSetByEnd && reach2 > bound && !toRest) break;
         exit2 = Math.min(bound, reach2);
         this.blocks[p + 1].entry2 = exit2;
       }

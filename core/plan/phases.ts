@@ -12,6 +12,7 @@
  * Phases are contiguous: each starts where the previous one ended, in time, in
  * s and in s′. Units: s in mm, τ in seconds.
  */
+/** One phase, as an object: the public view of a Timing. */
 export interface Phase {
   /** s, time since the segment began at which this phase begins */
   t0: number;
@@ -27,6 +28,14 @@ export interface Phase {
   jerk: number;
 }
 
+/**
+ * A segment's phases packed flat, PHASE_STRIDE numbers per phase in the order of
+ * Phase's fields: t0, duration, s0, v0, a0, jerk. One array of doubles instead of
+ * an object per phase: the queue times a million segments a second.
+ */
+export type Timing = number[];
+export const PHASE_STRIDE = 6;
+
 export interface PathState {
   /** mm along the segment */
   s: number;
@@ -36,29 +45,41 @@ export interface PathState {
   a: number;
 }
 
-/** Index of the phase containing time t (clamped to the first and last phase). */
-export function phaseIndexAt(phases: readonly Phase[], t: number): number {
-  let k = 0;
-  while (k + 1 < phases.length && t >= phases[k + 1].t0) k++;
-  return k;
+export function phaseCount(timing: Timing): number {
+  return timing.length / PHASE_STRIDE;
+}
+
+/** s, from the start of the first phase to the end of the last. */
+export function timingDuration(timing: Timing): number {
+  const o = timing.length - PHASE_STRIDE;
+  return o < 0 ? 0 : timing[o] + timing[o + 1];
+}
+
+/** The phases as objects. */
+export function phasesOf(timing: Timing): Phase[] {
+  const phases: Phase[] = [];
+  for (let o = 0; o < timing.length; o += PHASE_STRIDE) {
+    phases.push({ t0: timing[o], duration: timing[o + 1], s0: timing[o + 2], v0: timing[o + 3], a0: timing[o + 4], jerk: timing[o + 5] });
+  }
+  return phases;
 }
 
 /** s, s′ and s″ at time t since the segment began; clamped to [0, duration]. */
-export function evaluatePhases(phases: readonly Phase[], t: number, out: PathState): PathState {
-  const p = phases[phaseIndexAt(phases, t)];
-  let tau = t - p.t0;
+export function evaluateTiming(timing: Timing, t: number, out: PathState): PathState {
+  // The phase containing t (clamped to the first and last phase).
+  let o = 0;
+  while (o + PHASE_STRIDE < timing.length && t >= timing[o + PHASE_STRIDE]) o += PHASE_STRIDE;
+  let tau = t - timing[o];
+  const duration = timing[o + 1];
   if (tau < 0) tau = 0;
-  if (tau > p.duration) tau = p.duration;
-  const j = p.jerk;
-  out.s = p.s0 + tau * (p.v0 + tau * (p.a0 / 2 + (tau * j) / 6));
-  out.v = p.v0 + tau * (p.a0 + (tau * j) / 2);
-  out.a = p.a0 + tau * j;
+  if (tau > duration) tau = duration;
+  const v0 = timing[o + 3];
+  const a0 = timing[o + 4];
+  const j = timing[o + 5];
+  out.s = timing[o + 2] + tau * (v0 + tau * (a0 / 2 + (tau * j) / 6));
+  out.v = v0 + tau * (a0 + (tau * j) / 2);
+  out.a = a0 + tau * j;
   return out;
-}
-
-export function phasesDuration(phases: readonly Phase[]): number {
-  const last = phases[phases.length - 1];
-  return last ? last.t0 + last.duration : 0;
 }
 
 /**
@@ -78,7 +99,7 @@ export function phasesDuration(phases: readonly Phase[]): number {
  * Times: t_acc = (vp − ve)/a, t_dec = (vp − vx)/a, t_cruise = d_cruise/vp.
  * Phases of zero duration are left out.
  */
-export function trapezoidPhases(length: number, entry2: number, exit2: number, cruise2: number, accel: number): Phase[] {
+export function trapezoidTiming(length: number, entry2: number, exit2: number, cruise2: number, accel: number): Timing {
   const ve = Math.sqrt(entry2);
   const vx = Math.sqrt(exit2);
   let vp2 = Math.min(cruise2, (2 * accel * length + entry2 + exit2) / 2);
@@ -89,28 +110,24 @@ export function trapezoidPhases(length: number, entry2: number, exit2: number, c
   const dDec = (vp2 - exit2) / (2 * accel);
   const dCruise = Math.max(0, length - dAcc - dDec);
 
-  const phases: Phase[] = [];
+  const timing: Timing = [];
   let t = 0;
   let s = 0;
   const tAcc = (vp - ve) / accel;
   if (tAcc > 0) {
-    phases.push({ t0: t, duration: tAcc, s0: s, v0: ve, a0: accel, jerk: 0 });
+    timing.push(t, tAcc, s, ve, accel, 0);
     t += tAcc;
     s += dAcc;
   }
   if (dCruise > 0 && vp > 0) {
     const tCruise = dCruise / vp;
-    phases.push({ t0: t, duration: tCruise, s0: s, v0: vp, a0: 0, jerk: 0 });
+    timing.push(t, tCruise, s, vp, 0, 0);
     t += tCruise;
     s += dCruise;
   }
   const tDec = (vp - vx) / accel;
-  if (tDec > 0) {
-    phases.push({ t0: t, duration: tDec, s0: s, v0: vp, a0: -accel, jerk: 0 });
-  }
-  if (phases.length === 0) {
-    // Only a segment of zero length and zero speed gets here; the queue skips those.
-    phases.push({ t0: 0, duration: 0, s0: 0, v0: ve, a0: 0, jerk: 0 });
-  }
-  return phases;
+  if (tDec > 0) timing.push(t, tDec, s, vp, -accel, 0);
+  // Only a segment of zero length and zero speed gets here with nothing; the queue skips those.
+  if (timing.length === 0) timing.push(0, 0, 0, ve, 0, 0);
+  return timing;
 }

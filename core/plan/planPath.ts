@@ -7,7 +7,7 @@
 import { resolveLimits } from '../config/limits.ts';
 import type { LimitsConfig, ResolvedConfig } from '../config/types.ts';
 import { MaxlError } from '../errors.ts';
-import { phasesDuration, type Phase } from './phases.ts';
+import { phasesOf, timingDuration, type Phase } from './phases.ts';
 import { LookaheadPlanner } from './lookahead.ts';
 import { segmentsForMove, validateMove, type PathTail } from '../trajectory/moves.ts';
 import { sampleTimeline, type TrajectorySample } from '../trajectory/tracks.ts';
@@ -105,8 +105,8 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
   const planned: PlannedSegment[] = [];
   let t = 0;
   for (const seg of segments) {
-    const phases = seg.time();
-    const duration = phasesDuration(phases);
+    const phases = phasesOf(seg.time());
+    const duration = timingDuration(seg.timing!);
     planned.push({
       start: seg.start,
       end: seg.end,
@@ -129,7 +129,7 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
     segments: planned,
     skipped,
     sample(time: number): PathSample {
-      const s: TrajectorySample | null = sampleTimeline(segments, 0, startOf, time, 1);
+      const s: TrajectorySample | null = sampleTimeline(0, segments.length, (i) => segments[i], startOf, time, 1);
       if (s === null) return { ...atStart, position: [...start] };
       return { position: s.position, velocity: s.velocity, acceleration: s.acceleration };
     },

@@ -10,7 +10,7 @@
  * does not mention keeps its last value.
  */
 import { MaxlError } from '../errors.ts';
-import { evaluatePhases, phasesDuration, type PathState, type Phase } from '../plan/phases.ts';
+import { evaluateTiming, timingDuration, type PathState, type Timing } from '../plan/phases.ts';
 
 /** What an evaluator sees: the full state of the machine at one instant of the segment. */
 export interface EvaluatorState {
@@ -71,8 +71,10 @@ function finiteValue(field: string, value: unknown): number {
   return value;
 }
 
+const NO_SPECS: ResolvedEventSpec[] = [];
+
 export function resolveMoveEvents(events: MoveEvents | undefined, channels: readonly string[]): ResolvedEventSpec[] {
-  if (events === undefined) return [];
+  if (events === undefined) return NO_SPECS;
   const seen = new Set<number>();
   const channelOf = (field: string, name: unknown): number => {
     const index = typeof name === 'string' ? channels.indexOf(name) : -1;
@@ -112,7 +114,7 @@ export function resolveMoveEvents(events: MoveEvents | undefined, channels: read
 
 /** What buildEventTracks needs to know of a timed segment. */
 export interface TimedGeometry {
-  phases: readonly Phase[];
+  timing: Timing;
   length: number;
   moveOffset: number;
   start: readonly number[];
@@ -133,7 +135,7 @@ export function buildEventTracks(
   channels: readonly string[],
 ): EventTrack[] {
   if (specs.length === 0) return [];
-  const duration = phasesDuration(seg.phases);
+  const duration = timingDuration(seg.timing);
   const path: PathState = { s: 0, v: 0, a: 0 };
   return specs.map((spec) => {
     if (spec.evaluator === undefined) return { channel: spec.channel, times: [0], values: [spec.value as number] };
@@ -144,7 +146,7 @@ export function buildEventTracks(
     const samples = Math.max(1, Math.ceil(duration / step - 1e-9));
     for (let k = 0; k < samples; k++) {
       const t = k * step;
-      evaluatePhases(seg.phases, t, path);
+      evaluateTiming(seg.timing, t, path);
       const position: Record<string, number> = {};
       motionAxes.forEach((name, i) => (position[name] = seg.start[i] + seg.unit[i] * path.s));
       actuatorAxes.forEach((name, i) => (position[name] = seg.actuatorStart[i] + seg.actuatorRate[i] * path.s));

@@ -27,6 +27,9 @@ export interface ValidatedMove {
   events: ResolvedEventSpec[];
 }
 
+/** The fractions of a move that is not subdivided. */
+const WHOLE = [0, 1];
+
 /** Lengths below this (mm) are treated as zero: such moves are skipped and counted. */
 export const ZERO_LENGTH_MM = 1e-9;
 
@@ -55,7 +58,12 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
         'endPosition',
       );
     }
-    end = target.map((v, i) => finite(`endPosition[${i}]`, v));
+    end = new Array<number>(axes.length);
+    for (let i = 0; i < axes.length; i++) {
+      const v = target[i];
+      // The field name is only built on the error path: this runs once per move.
+      end[i] = typeof v === 'number' && Number.isFinite(v) ? v : finite(`endPosition[${i}]`, v);
+    }
   } else if (target !== null && typeof target === 'object') {
     end = [...from];
     for (const [name, v] of Object.entries(target)) {
@@ -92,6 +100,11 @@ export function distance(a: readonly number[], b: readonly number[]): number {
   return Math.sqrt(d2);
 }
 
+function hasNonlinearTransform(config: ResolvedConfig): boolean {
+  for (const t of config.transforms) if (!t.linear) return true;
+  return false;
+}
+
 /** What the next segment needs to know of the one before it. */
 export interface PathTail {
   position: number[];
@@ -113,48 +126,45 @@ export function segmentsForMove(
   const p0 = tail.position;
   const total = distance(p0, move.end);
   if (total < ZERO_LENGTH_MM) return [];
-  const unit = move.end.map((v, i) => (v - p0[i]) / total);
+  const unit = new Array<number>(p0.length);
+  for (let i = 0; i < p0.length; i++) unit[i] = (move.end[i] - p0[i]) / total;
   const limits = config.limits;
   const speed = Math.min(move.maxVelocity, projectLimit(limits.maxSpeed, limits.axisMaxSpeed, unit));
   const cruise2 = speed * speed;
   const accel = projectLimit(limits.maxAccel, limits.axisMaxAccel, unit);
 
-  const fractions = subdivisionFractions(config.transforms, p0, move.end);
-  const points = fractions.map((f) => p0.map((v, i) => v + (move.end[i] - v) * f));
-  points[points.length - 1] = [...move.end]; // exact end, no rounding
-  const actuators = points.map((p) => actuatorPosition(config.transforms, p));
-
+  // Pieces of the move: one, unless a nonlinear transform needs more.
+  const fractions = hasNonlinearTransform(config) ? subdivisionFractions(config.transforms, p0, move.end) : WHOLE;
   const segments: Segment[] = [];
   let prevUnit = tail.unit;
   let prevCruise2 = tail.cruise2;
-  for (let k = 0; k + 1 < points.length; k++) {
-    const start = points[k];
-    const end = points[k + 1];
-    const length = (fractions[k + 1] - fractions[k]) * total;
+  let start = p0;
+  let a0 = actuatorPosition(config.transforms, p0);
+  for (let k = 0; k + 1 < fractions.length; k++) {
+    const last = k + 2 === fractions.length;
+    const f1 = fractions[k + 1];
+    const end = last ? move.end : p0.map((v, i) => v + (move.end[i] - v) * f1);
+    const length = (f1 - fractions[k]) * total;
+    const a1 = actuatorPosition(config.transforms, end);
     // Within one move all pieces share the direction; only the first meets a corner.
     const junction2 = prevUnit === null ? 0 : k === 0 ? junctionSpeed2(prevUnit, unit, limits) : Infinity;
     const maxEntry2 = Math.min(junction2, cruise2, prevUnit === null ? 0 : prevCruise2);
-    const a0 = actuators[k];
-    const a1 = actuators[k + 1];
-    segments.push(
-      new Segment({
-        id: ids.nextSegmentId + k,
-        moveId: ids.moveId,
-        start,
-        end,
-        unit,
-        length,
-        moveOffset: fractions[k] * total,
-        actuatorStart: a0,
-        actuatorRate: a0.map((v, j) => (a1[j] - v) / length),
-        events: move.events,
-        accel,
-        cruise2,
-        maxEntry2,
-      }),
-    );
+    let rate = a0; // (empty when there are no transforms)
+    if (a0.length > 0) {
+      rate = new Array<number>(a0.length);
+      for (let j = 0; j < a0.length; j++) rate[j] = (a1[j] - a0[j]) / length;
+    }
+    const seg = new Segment(ids.nextSegmentId + k, ids.moveId, start, end, unit, length, fractions[k] * total, move);
+    seg.actuatorStart = a0;
+    seg.actuatorRate = rate;
+    seg.accel = accel;
+    seg.cruise2 = cruise2;
+    seg.maxEntry2 = maxEntry2;
+    segments.push(seg);
     prevUnit = unit;
     prevCruise2 = cruise2;
+    start = end;
+    a0 = a1;
   }
   return segments;
 }

@@ -9,10 +9,10 @@
  *
  * Untransmitted moves can be cancelled or replaced; the plan is redone from there.
  * The queue is bounded: it holds at most `capacity` untransmitted segments, and
- * producers wait for room (waitForRoom), so a loop of addSegmentToQueue calls
- * paces itself to the machine. An executor (the device sessions, or a dry run)
- * takes segments from the front with transmitNext() and retires them with
- * retireUntil() as time passes.
+ * producers wait for room (reserveSlot), so a loop of addSegmentToQueue calls paces
+ * itself to the machine. An executor (the device sessions, or a dry run) takes
+ * segments from the front with transmitNext() and retires them with retireUntil()
+ * as time passes.
  */
 import { MaxlError } from '../errors.ts';
 import type { ResolvedConfig } from '../config/types.ts';
@@ -38,14 +38,12 @@ export interface MoveReceipt {
   skipped: boolean;
 }
 
-/** A move's record while any of its segments is untransmitted. */
-interface QueuedMove {
-  moveId: number;
-  move: ValidatedMove;
-  segments: Segment[];
-}
-
 export const DEFAULT_QUEUE_CAPACITY = 512;
+
+/** The tracks of a segment that sets no event channel. */
+const NO_EVENTS: EventTrack[] = [];
+
+const LOCKED_MESSAGE = 'has already been transmitted; transmitted segments are locked';
 
 export class TrajectoryQueue {
   readonly config: ResolvedConfig;
@@ -53,33 +51,36 @@ export class TrajectoryQueue {
   /** Zero-length moves skipped so far. */
   skippedZeroLength = 0;
 
-  /** Live segments (unplanned, planned, transmitted) in path order; live[head] is the oldest. */
+  /**
+   * Live segments (transmitted, then untransmitted) in path order from live[head].
+   * The last `untransmitted` of them are the planner's blocks.
+   */
   private live: Segment[] = [];
   private head = 0;
   private untransmitted = 0;
-  /** Moves with untransmitted segments, oldest first. */
-  private moves: QueuedMove[] = [];
   private readonly planner: LookaheadPlanner<Segment>;
   /** Segments finalised during the current call, reported once it returns. */
   private newlyPlanned: Segment[] = [];
   private nextSegmentId = 1;
   private nextMoveId = 1;
-  /** End of the path as appended so far. */
-  private tail: PathTail;
+  /** End of the path as appended so far (mutated in place). */
+  private readonly tail: PathTail;
   /** End of the last transmitted segment: author µs, and whether the machine is still moving there. */
   private lockedEnd_us = -Infinity;
   private lockedExit2 = 0;
   /** Event channel values at the end of the transmitted path. */
   private lockedEventValues: number[];
-  private listeners = new Set<QueueListener>();
+  private listeners: QueueListener[] = [];
   /** Producers waiting for room, oldest first, and slots promised to woken ones. */
   private roomWaiters: Array<() => void> = [];
   private reserved = 0;
-  private readonly eventTracks = new WeakMap<Segment, EventTrack[]>();
-  private readonly eventsAtStart = new WeakMap<Segment, number[]>();
 
-  constructor(config: ResolvedConfig, initialPosition?: number[]) {
+  /** Called for each segment as it is locked, before listeners hear of it (the author's history). */
+  private readonly onTransmitted: ((seg: Segment) => void) | undefined;
+
+  constructor(config: ResolvedConfig, initialPosition?: number[], onTransmitted?: (seg: Segment) => void) {
     this.config = config;
+    this.onTransmitted = onTransmitted;
     this.capacity = config.queueCapacity;
     const position = initialPosition ? [...initialPosition] : new Array<number>(config.motionAxes.length).fill(0);
     this.tail = { position, unit: null, cruise2: 0 };
@@ -153,24 +154,22 @@ export class TrajectoryQueue {
    * final; throws the evaluator's MaxlError if one failed.
    */
   eventTracksOf(seg: Segment): EventTrack[] {
-    let tracks = this.eventTracks.get(seg);
-    if (tracks === undefined) {
-      if (seg.phases === null) throw new MaxlError('SEGMENT_NOT_FOUND', `segment ${seg.id} is not timed yet`);
-      const timed = { ...seg, phases: seg.phases, length: seg.length, moveOffset: seg.moveOffset, start: seg.start, unit: seg.unit };
-      tracks = buildEventTracks(seg.events, timed, this.config.motionAxes, this.config.actuatorAxes, this.config.eventChannels);
-      this.eventTracks.set(seg, tracks);
+    if (seg.eventTracks === null) {
+      const timing = seg.timing;
+      if (timing === null) throw new MaxlError('SEGMENT_NOT_FOUND', `segment ${seg.id} is not timed yet`);
+      seg.eventTracks =
+        seg.events.length === 0
+          ? NO_EVENTS
+          : buildEventTracks(seg.events, { ...geometryOf(seg), timing }, this.config.motionAxes, this.config.actuatorAxes, this.config.eventChannels);
     }
-    return tracks;
-  }
-
-  /** Every event channel's value as a transmitted segment begins (index = channel). */
-  eventValuesAtStart(seg: Segment): readonly number[] | undefined {
-    return this.eventsAtStart.get(seg);
+    return seg.eventTracks;
   }
 
   subscribe(listener: QueueListener): () => void {
-    this.listeners.add(listener);
-    return () => this.listeners.delete(listener);
+    this.listeners = [...this.listeners, listener];
+    return () => {
+      this.listeners = this.listeners.filter((l) => l !== listener);
+    };
   }
 
   // --- producing ---
@@ -198,24 +197,9 @@ export class TrajectoryQueue {
    */
   appendValidated(move: ValidatedMove, reserved = false): MoveReceipt {
     if (reserved) this.reserved--;
-    const moveId = this.nextMoveId++;
-    const segments = segmentsForMove(this.config, move, this.tail, { nextSegmentId: this.nextSegmentId, moveId });
-    if (segments.length === 0) {
-      this.skippedZeroLength++;
-      return { moveId, segmentIds: [], skipped: true };
-    }
-    this.nextSegmentId += segments.length;
-    this.moves.push({ moveId, move, segments });
-    for (const seg of segments) {
-      this.live.push(seg);
-      this.untransmitted++;
-      this.planner.append(seg);
-    }
-    const last = segments[segments.length - 1];
-    this.tail = { position: last.end, unit: last.unit, cruise2: last.cruise2 };
-    this.emit('added', segments);
+    const receipt = this.enqueue(move, this.nextMoveId++, null);
     this.flushPlanned();
-    return { moveId, segmentIds: segments.map((s) => s.id), skipped: false };
+    return receipt;
   }
 
   /** Validates and appends in one step, ignoring the capacity bound. */
@@ -223,101 +207,98 @@ export class TrajectoryQueue {
     return this.appendValidated(this.validate(move));
   }
 
+  /** Turns a move into segments at the tail and plans them; `added` collects them for an edit's report. */
+  private enqueue(move: ValidatedMove, moveId: number, added: Segment[] | null): MoveReceipt {
+    const segments = segmentsForMove(this.config, move, this.tail, { nextSegmentId: this.nextSegmentId, moveId });
+    if (segments.length === 0) {
+      this.skippedZeroLength++;
+      return { moveId, segmentIds: [], skipped: true };
+    }
+    this.nextSegmentId += segments.length;
+    for (const seg of segments) {
+      this.live.push(seg);
+      this.untransmitted++;
+      this.planner.append(seg);
+    }
+    const last = segments[segments.length - 1];
+    this.tail.position = last.end;
+    this.tail.unit = last.unit;
+    this.tail.cruise2 = last.cruise2;
+    if (added) for (const seg of segments) added.push(seg);
+    else this.emit('added', segments);
+    return { moveId, segmentIds: segments.length === 1 ? [segments[0].id] : segments.map((s) => s.id), skipped: false };
+  }
+
   // --- editing ---
 
   /** Cancels an untransmitted move (all its segments). Later moves now start where the one before it ended. */
   cancel(moveId: number): void {
-    this.edit(moveId, null);
+    this.edit(this.untransmittedIndexOf(moveId), null, true);
   }
 
   /** Replaces an untransmitted move by another. Later moves keep their end positions. */
   replace(moveId: number, move: Move): MoveReceipt {
-    return this.edit(moveId, move) as MoveReceipt;
+    const index = this.untransmittedIndexOf(moveId);
+    return this.edit(index, this.validate(move, this.live[index].start), true) as MoveReceipt;
   }
 
-  /** Cancels every untransmitted move. */
+  /** Cancels every untransmitted segment. */
   cancelAll(): void {
-    if (this.moves.length > 0) this.edit(this.moves[0].moveId, null, true);
+    if (this.untransmitted > 0) this.edit(this.live.length - this.untransmitted, null, false);
   }
 
-  private findMove(moveId: number): number {
-    const index = this.moves.findIndex((m) => m.moveId === moveId);
-    if (index >= 0) {
-      if (this.moves[index].segments.some((s) => s.locked)) {
-        throw new MaxlError('SEGMENT_LOCKED', `move ${moveId} has already been transmitted; transmitted segments are locked`);
+  /** Index in `live` of a move's first segment, which must be untransmitted, as must the whole move. */
+  private untransmittedIndexOf(moveId: number): number {
+    const first = this.live.length - this.untransmitted;
+    for (let i = first; i < this.live.length; i++) {
+      if (this.live[i].moveId !== moveId) continue;
+      if (i > this.head && this.live[i - 1].moveId === moveId) {
+        throw new MaxlError('SEGMENT_LOCKED', `part of move ${moveId} ${LOCKED_MESSAGE}`);
       }
-      return index;
+      return i;
     }
-    const seg = this.live.slice(this.head).find((s) => s.moveId === moveId);
-    if (seg || moveId < this.nextMoveId) {
-      throw new MaxlError('SEGMENT_LOCKED', `move ${moveId} has already been transmitted; transmitted segments are locked`);
-    }
+    if (moveId > 0 && moveId < this.nextMoveId) throw new MaxlError('SEGMENT_LOCKED', `move ${moveId} ${LOCKED_MESSAGE}`);
     throw new MaxlError('SEGMENT_NOT_FOUND', `there is no move ${moveId}`);
   }
 
-  private edit(moveId: number, replacement: Move | null, toEnd = false): MoveReceipt | undefined {
-    const index = this.findMove(moveId);
-    const edited = this.moves[index];
-    const firstSeg = edited.segments[0];
-    const planIndex = this.live.indexOf(firstSeg, this.head) - (this.live.length - this.untransmitted);
-    const startPos = firstSeg.start;
-    // Validate the replacement before touching anything.
-    const validated = replacement ? this.validate(replacement, startPos) : null;
+  /**
+   * Removes the untransmitted segments from live[index] on, then appends
+   * `replacement` (if any) and, when `keepLater`, the moves after the first one
+   * removed, each from the new end of the path. Refused, with nothing changed, if
+   * the moving machine could no longer brake in time.
+   */
+  private edit(index: number, replacement: ValidatedMove | null, keepLater: boolean): MoveReceipt | undefined {
+    const firstUntransmitted = this.live.length - this.untransmitted;
+    const planIndex = index - firstUntransmitted;
+    const removed = this.live.slice(index);
+    const editedMove = removed[0].moveId;
+    const later: Segment[] = []; // one segment per later move, carrying its source move
+    if (keepLater) for (const seg of removed) if (seg.moveId !== editedMove && seg.moveId !== later[later.length - 1]?.moveId) later.push(seg);
+    const oldTail = { ...this.tail };
 
-    const keptMoves = this.moves.slice(0, index);
-    const laterMoves = toEnd ? [] : this.moves.slice(index + 1);
-    const oldMoves = this.moves.slice(index);
-    const oldTail = this.tail;
     // Every untransmitted segment is replanned; onPlanned marks the final ones again.
-    const wasPlanned = this.untransmittedSegments().filter((seg) => seg.state === 'planned');
-    for (const seg of this.untransmittedSegments()) seg.state = 'unplanned';
+    const wasPlanned = this.live.slice(firstUntransmitted).filter((seg) => seg.state === 'planned');
+    for (let i = firstUntransmitted; i < this.live.length; i++) this.live[i].state = 'unplanned';
     this.newlyPlanned = [];
-    const removed = this.planner.truncate(planIndex);
-    this.live.length -= removed.length;
-    this.untransmitted -= removed.length;
-    for (const s of removed) s.state = 'unplanned';
-    this.moves = keptMoves;
-    const before = this.live[this.live.length - 1];
-    this.tail = before
-      ? { position: before.end, unit: before.unit, cruise2: before.cruise2 }
-      : { position: [...startPos], unit: null, cruise2: 0 };
+    this.truncateTo(index, planIndex);
+    const before = this.live[index - 1] as Segment | undefined;
+    this.tail.position = before ? before.end : removed[0].start;
+    this.tail.unit = before ? before.unit : null;
+    this.tail.cruise2 = before ? before.cruise2 : 0;
 
     const added: Segment[] = [];
-    let receipt: MoveReceipt | undefined;
-    const requeue = (move: ValidatedMove, id?: number): MoveReceipt => {
-      const moveIdUsed = id ?? this.nextMoveId++;
-      const segs = segmentsForMove(this.config, move, this.tail, { nextSegmentId: this.nextSegmentId, moveId: moveIdUsed });
-      if (segs.length === 0) {
-        this.skippedZeroLength++;
-        return { moveId: moveIdUsed, segmentIds: [], skipped: true };
-      }
-      this.nextSegmentId += segs.length;
-      this.moves.push({ moveId: moveIdUsed, move, segments: segs });
-      for (const seg of segs) {
-        this.live.push(seg);
-        this.untransmitted++;
-        this.planner.append(seg);
-        added.push(seg);
-      }
-      const last = segs[segs.length - 1];
-      this.tail = { position: last.end, unit: last.unit, cruise2: last.cruise2 };
-      return { moveId: moveIdUsed, segmentIds: segs.map((s) => s.id), skipped: false };
-    };
-    if (validated) receipt = requeue(validated);
-    for (const m of laterMoves) requeue(m.move, m.moveId);
+    const receipt = replacement ? this.enqueue(replacement, this.nextMoveId++, added) : undefined;
+    for (const seg of later) this.enqueue(seg.source, seg.moveId, added);
 
     if (!this.planner.isFeasible()) {
       // Undo: the machine is already committed to a speed this path cannot absorb.
-      this.planner.truncate(planIndex);
-      this.live.length -= added.length;
-      this.untransmitted -= added.length;
-      this.moves = keptMoves.concat(oldMoves);
+      this.truncateTo(index, planIndex);
       for (const seg of removed) {
         this.live.push(seg);
         this.untransmitted++;
         this.planner.append(seg);
       }
-      this.tail = oldTail;
+      Object.assign(this.tail, oldTail);
       this.settleReplan(wasPlanned);
       throw new MaxlError(
         'CANNOT_STOP_IN_PATH',
@@ -325,15 +306,17 @@ export class TrajectoryQueue {
       );
     }
     this.settleReplan(wasPlanned);
-    if (removed.length > 0) this.emit('removed', removed);
-    if (added.length > 0) this.emit('added', added);
+    this.emit('removed', removed);
+    this.emit('added', added);
     this.flushPlanned();
     this.wakeWaiters();
     return receipt;
   }
 
-  private untransmittedSegments(): Segment[] {
-    return this.live.slice(this.live.length - this.untransmitted);
+  private truncateTo(index: number, planIndex: number): void {
+    const dropped = this.planner.truncate(planIndex).length;
+    this.live.length = index;
+    this.untransmitted -= dropped;
   }
 
   /**
@@ -343,13 +326,11 @@ export class TrajectoryQueue {
    */
   private settleReplan(wasPlanned: Segment[]): void {
     const before = new Set(wasPlanned);
-    const dropped = wasPlanned.filter((seg) => seg.state === 'unplanned' && this.live.includes(seg));
-    for (const seg of dropped) {
-      seg.phases = null;
-      this.eventTracks.delete(seg);
-    }
+    const live = new Set(this.live.slice(this.live.length - this.untransmitted));
+    const dropped = wasPlanned.filter((seg) => seg.state === 'unplanned' && live.has(seg));
+    for (const seg of dropped) seg.untime();
     this.newlyPlanned = this.newlyPlanned.filter((seg) => !before.has(seg));
-    if (dropped.length > 0) this.emit('replanned', dropped);
+    this.emit('replanned', dropped);
   }
 
   // --- executing ---
@@ -368,26 +349,22 @@ export class TrajectoryQueue {
       // evaluator throws before anything is locked.
       next.exit2 = this.planner.frontExit2();
       next.time();
-      this.eventTracks.delete(next);
     }
-    this.eventTracksOf(next);
+    const tracks = this.eventTracksOf(next);
     const seg = this.planner.lockFront();
-    const contiguous = this.lockedExit2 > 0;
-    seg.startTime_us = contiguous ? this.lockedEnd_us : Math.max(earliestStart_us, this.lockedEnd_us);
+    seg.startTime_us = this.lockedExit2 > 0 ? this.lockedEnd_us : Math.max(earliestStart_us, this.lockedEnd_us);
     seg.state = 'transmitted';
     this.untransmitted--;
     this.lockedEnd_us = seg.endTime_us;
     this.lockedExit2 = seg.exit2;
-    this.eventsAtStart.set(seg, this.lockedEventValues);
-    const tracks = this.eventTracksOf(seg);
+    seg.eventsAtStart = this.lockedEventValues;
     if (tracks.length > 0) {
       const values = [...this.lockedEventValues];
       for (const t of tracks) values[t.channel] = t.values[t.values.length - 1];
       this.lockedEventValues = values;
     }
-    const move = this.moves[0];
-    if (move && move.segments[move.segments.length - 1] === seg) this.moves.shift();
-    this.emit('transmitted', [seg]);
+    this.onTransmitted?.(seg);
+    if (this.listeners.length > 0) this.emit('transmitted', [seg]);
     this.flushPlanned();
     this.wakeWaiters();
     return seg;
@@ -416,7 +393,7 @@ export class TrajectoryQueue {
       this.live = this.live.slice(this.head);
       this.head = 0;
     }
-    if (retired.length > 0) this.emit('historical', retired);
+    this.emit('historical', retired);
     return retired;
   }
 
@@ -424,7 +401,6 @@ export class TrajectoryQueue {
 
   private onPlanned(seg: Segment): void {
     seg.time();
-    this.eventTracks.delete(seg);
     if (seg.state === 'unplanned') {
       seg.state = 'planned';
       this.newlyPlanned.push(seg);
@@ -432,15 +408,25 @@ export class TrajectoryQueue {
   }
 
   private flushPlanned(): void {
-    if (this.newlyPlanned.length === 0) return;
     const planned = this.newlyPlanned;
+    if (planned.length === 0) return;
     this.newlyPlanned = [];
-    if (this.listeners.size > 0) this.emit('planned', planned.filter((s) => s.state === 'planned'));
+    if (this.listeners.length === 0) return;
+    // A segment planned during this call may already have been transmitted by it.
+    let still = planned;
+    for (const s of planned) {
+      if (s.state !== 'planned') {
+        still = planned.filter((p) => p.state === 'planned');
+        break;
+      }
+    }
+    this.emit('planned', still);
   }
 
   private emit(type: QueueEventType, segments: readonly Segment[]): void {
     if (segments.length === 0) return;
-    for (const listener of this.listeners) listener({ type, segments });
+    const listeners = this.listeners;
+    for (let i = 0; i < listeners.length; i++) listeners[i]({ type, segments });
   }
 
   private wakeWaiters(): void {
@@ -450,6 +436,17 @@ export class TrajectoryQueue {
       resolve();
     }
   }
+}
+
+function geometryOf(seg: Segment) {
+  return {
+    length: seg.length,
+    moveOffset: seg.moveOffset,
+    start: seg.start,
+    unit: seg.unit,
+    actuatorStart: seg.actuatorStart,
+    actuatorRate: seg.actuatorRate,
+  };
 }
 
 export type { SegmentState };

@@ -12,8 +12,11 @@
  * the segment is transmitted.
  */
 import type { PlanBlock } from '../plan/lookahead.ts';
-import { phasesDuration, trapezoidPhases, type Phase } from '../plan/phases.ts';
-import type { ResolvedEventSpec } from './events.ts';
+import { timingDuration, trapezoidTiming, type Timing } from '../plan/phases.ts';
+import type { EventTrack, ResolvedEventSpec } from './events.ts';
+import type { ValidatedMove } from './moves.ts';
+
+const NO_ACTUATORS: number[] = [];
 
 /** The paper's four states, in order. */
 export type SegmentState = 'unplanned' | 'planned' | 'transmitted' | 'historical';
@@ -22,6 +25,8 @@ export class Segment implements PlanBlock {
   readonly id: number;
   /** The addSegmentToQueue call this segment came from; a nonlinear transform splits one move into many segments. */
   readonly moveId: number;
+  /** That move, validated: an edit re-creates later segments from it. */
+  readonly source: ValidatedMove;
   state: SegmentState = 'unplanned';
 
   // geometry
@@ -31,64 +36,69 @@ export class Segment implements PlanBlock {
   readonly length: number;
   /** mm along the move at which this segment starts (0 unless the move was subdivided). */
   readonly moveOffset: number;
-  readonly actuatorStart: number[];
-  readonly actuatorRate: number[];
+  /** Each actuator axis at the segment's start, and its rate d(actuator)/ds. */
+  actuatorStart: number[] = NO_ACTUATORS;
+  actuatorRate: number[] = NO_ACTUATORS;
   /** Event channel values or evaluators for this segment, if any. */
   readonly events: readonly ResolvedEventSpec[];
 
-  // planner (PlanBlock)
-  accel: number;
-  cruise2: number;
-  maxEntry2: number;
+  // planner (PlanBlock): limits along this segment, set by moves.ts
+  accel = 0;
+  cruise2 = 0;
+  maxEntry2 = 0;
   entry2 = 0;
   exit2 = 0;
   work = 0;
 
   // timing
-  /** s(t), final once the segment is planned. Null before. */
-  phases: Phase[] | null = null;
+  /** s(t) as packed phases, final once the segment is planned. Null before. */
+  timing: Timing | null = null;
+  /** s, or NaN before the segment is timed. */
+  duration_s = NaN;
   /** Author time, µs, at which the segment starts. NaN until it is transmitted. */
   startTime_us = NaN;
 
-  constructor(init: {
-    id: number;
-    moveId: number;
-    start: number[];
-    end: number[];
-    unit: number[];
-    length: number;
-    moveOffset: number;
-    actuatorStart: number[];
-    actuatorRate: number[];
-    events: readonly ResolvedEventSpec[];
-    accel: number;
-    cruise2: number;
-    maxEntry2: number;
-  }) {
-    this.id = init.id;
-    this.moveId = init.moveId;
-    this.start = init.start;
-    this.end = init.end;
-    this.unit = init.unit;
-    this.length = init.length;
-    this.moveOffset = init.moveOffset;
-    this.actuatorStart = init.actuatorStart;
-    this.actuatorRate = init.actuatorRate;
-    this.events = init.events;
-    this.accel = init.accel;
-    this.cruise2 = init.cruise2;
-    this.maxEntry2 = init.maxEntry2;
+  // events
+  /** The event tracks sampled from `events` for the current timing; null until built. */
+  eventTracks: EventTrack[] | null = null;
+  /** Every event channel's value as the segment begins; set when it is transmitted. */
+  eventsAtStart: readonly number[] | null = null;
+
+  constructor(
+    id: number,
+    moveId: number,
+    start: number[],
+    end: number[],
+    unit: number[],
+    length: number,
+    moveOffset: number,
+    source: ValidatedMove,
+  ) {
+    this.id = id;
+    this.moveId = moveId;
+    this.source = source;
+    this.start = start;
+    this.end = end;
+    this.unit = unit;
+    this.length = length;
+    this.moveOffset = moveOffset;
+    this.events = source.events;
   }
 
-  /** Builds the phases from the planner's entry and exit speeds. */
-  time(): Phase[] {
-    this.phases = trapezoidPhases(this.length, this.entry2, this.exit2, this.cruise2, this.accel);
-    return this.phases;
+  /** Builds the timing from the planner's entry and exit speeds (dropping event tracks built for older timing). */
+  time(): Timing {
+    const timing = trapezoidTiming(this.length, this.entry2, this.exit2, this.cruise2, this.accel);
+    this.timing = timing;
+    this.duration_s = timingDuration(timing);
+    this.eventTracks = null;
+    return timing;
   }
 
-  /** s, or NaN before the segment is timed. */
-  get duration_s(): number {
-    return this.phases ? phasesDuration(this.phases) : NaN;
+  /** Forgets the timing (an edit made the plan provisional again). */
+  untime(): void {
+    this.timing = null;
+    this.duration_s = NaN;
+    this.eventTracks = null;
   }
 
   get endTime_us(): number {

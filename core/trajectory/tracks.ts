@@ -9,7 +9,7 @@
  * Before the first segment the machine rests at its start; after the last it rests
  * at its end.
  */
-import { evaluatePhases, phasesDuration, type PathState, type Phase } from '../plan/phases.ts';
+import { evaluateTiming, timingDuration, type PathState, type Timing } from '../plan/phases.ts';
 
 export interface TimedSegment {
   start: readonly number[];
@@ -17,7 +17,7 @@ export interface TimedSegment {
   unit: readonly number[];
   actuatorStart: readonly number[];
   actuatorRate: readonly number[];
-  phases: readonly Phase[] | null;
+  timing: Timing | null;
 }
 
 export interface TrajectorySample {
@@ -43,7 +43,7 @@ const scratch: PathState = { s: 0, v: 0, a: 0 };
 
 /** Samples one timed segment at time `t` seconds after it began (clamped to the segment). */
 export function sampleSegment(seg: TimedSegment, t: number, index = -1): TrajectorySample {
-  const path = seg.phases ? evaluatePhases(seg.phases, t, scratch) : { s: 0, v: 0, a: 0 };
+  const path = seg.timing ? evaluateTiming(seg.timing, t, scratch) : { s: 0, v: 0, a: 0 };
   return {
     position: seg.start.map((p, i) => p + seg.unit[i] * path.s),
     actuator: seg.actuatorStart.map((p, j) => p + seg.actuatorRate[j] * path.s),
@@ -91,26 +91,28 @@ export function segmentIndexAt(first: number, end: number, startOf: (i: number) 
 }
 
 /**
- * Samples segments[first…] at time t, where startOf(i) gives segment i's start in
- * the same unit as t and `toSeconds` converts a difference of that unit to seconds.
+ * Samples segments first … end−1 at time t: segmentAt(i) gives segment i and
+ * startOf(i) its start, in the same unit as t; `toSeconds` converts a difference of
+ * that unit to seconds. Only the segment sampled is fetched.
  */
 export function sampleTimeline(
-  segments: readonly TimedSegment[],
   first: number,
+  end: number,
+  segmentAt: (i: number) => TimedSegment,
   startOf: (i: number) => number,
   t: number,
   toSeconds: number,
 ): TrajectorySample | null {
-  if (segments.length <= first) return null;
-  const i = segmentIndexAt(first, segments.length, startOf, t);
+  if (end <= first) return null;
+  const i = segmentIndexAt(first, end, startOf, t);
   if (i < 0) {
-    const seg = segments[first];
+    const seg = segmentAt(first);
     return restingSample(seg.start, seg.actuatorStart, -1);
   }
-  const seg = segments[i];
+  const seg = segmentAt(i);
   const local = (t - startOf(i)) * toSeconds;
-  const duration = seg.phases ? phasesDuration(seg.phases) : 0;
-  if (local >= duration && i === segments.length - 1) {
+  const duration = seg.timing ? timingDuration(seg.timing) : 0;
+  if (local >= duration && i === end - 1) {
     const endActuator = seg.actuatorStart.map((p, j) => p + seg.actuatorRate[j] * lengthOf(seg));
     return restingSample(seg.end, endActuator, i);
   }

@@ -99,8 +99,11 @@ export function resolveTransforms(configs: TransformConfig[] | undefined, motion
   });
 }
 
+const NONE: number[] = [];
+
 /** Every actuator axis's position at the motion-space point p, in config order. */
 export function actuatorPosition(transforms: readonly ResolvedTransform[], p: readonly number[]): number[] {
+  if (transforms.length === 0) return NONE;
   const out: number[] = [];
   for (const t of transforms) {
     const input = t.inputs.map((i) => p[i]);

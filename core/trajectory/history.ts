@@ -1,0 +1,142 @@
+/**
+ * The as-planned history: every transmitted segment's geometry and timing, kept in
+ * one Float64Array ring rather than as objects, so that a long job's history costs
+ * neither allocation nor garbage-collector time, and sampling the past stays a
+ * binary search.
+ *
+ * One record per segment, `stride` doubles:
+ *   [0] start, author µs        [1] duration, s       [2] length, mm
+ *   [3] timing length           [4 …] the packed timing, room for MAX_PHASES phases
+ *   then start[A], unit[A], actuatorStart[B], actuatorRate[B], eventsAtStart[E]
+ * with A motion axes, B actuator axes and E event channels. Event changes inside a
+ * segment (rare: only where a move sets channels) are kept beside it, by record.
+ */
+import { PHASE_STRIDE, type Timing } from '../plan/phases.ts';
+import type { EventTrack } from './events.ts';
+import type { Segment } from './segment.ts';
+import { sampleTimeline, segmentIndexAt, type TimedSegment, type TrajectorySample } from './tracks.ts';
+
+/** Trapezoids have up to 3 phases; S-curves will need 7. */
+export const MAX_PHASES = 3;
+const HEADER = 4;
+
+export interface HistoricalSegment extends TimedSegment {
+  startTime_us: number;
+  duration_s: number;
+  length: number;
+  timing: Timing;
+  eventsAtStart: number[];
+  eventTracks: readonly EventTrack[];
+}
+
+export class TrajectoryHistory {
+  readonly capacity: number;
+  private readonly axes: number;
+  private readonly actuators: number;
+  private readonly channels: number;
+  private readonly stride: number;
+  /** Grows by doubling up to capacity records, so a short job does not commit the whole ring. */
+  private data: Float64Array;
+  /** Records pushed so far; record n lives at slot n % capacity while n ≥ count − capacity. */
+  private count = 0;
+  private readonly events = new Map<number, readonly EventTrack[]>();
+
+  constructor(axes: number, actuators: number, channels: number, capacity: number) {
+    this.axes = axes;
+    this.actuators = actuators;
+    this.channels = channels;
+    this.capacity = Math.max(1, Math.floor(capacity));
+    this.stride = HEADER + MAX_PHASES * PHASE_STRIDE + 2 * axes + 2 * actuators + channels;
+    this.data = new Float64Array(Math.min(this.capacity, 1024) * this.stride);
+  }
+
+  /** Records held (at most `capacity`). */
+  get size(): number {
+    return Math.min(this.count, this.capacity);
+  }
+
+  /** Copies a transmitted segment in; the oldest record goes when the ring is full. */
+  push(seg: Segment): void {
+    const timing = seg.timing;
+    if (timing === null || timing.length > MAX_PHASES * PHASE_STRIDE) throw new Error(`history: segment ${seg.id} has no timing or too many phases`);
+    const n = this.count++;
+    if (n >= this.capacity) this.events.delete(n - this.capacity);
+    else if ((n + 1) * this.stride > this.data.length) {
+      const grown = new Float64Array(Math.min(this.capacity, 2 * (n + 1)) * this.stride);
+      grown.set(this.data);
+      this.data = grown;
+    }
+    const d = this.data;
+    let o = (n % this.capacity) * this.stride;
+    d[o] = seg.startTime_us;
+    d[o + 1] = seg.duration_s;
+    d[o + 2] = seg.length;
+    d[o + 3] = timing.length;
+    for (let k = 0; k < timing.length; k++) d[o + HEADER + k] = timing[k];
+    o += HEADER + MAX_PHASES * PHASE_STRIDE;
+    for (let i = 0; i < this.axes; i++) d[o++] = seg.start[i];
+    for (let i = 0; i < this.axes; i++) d[o++] = seg.unit[i];
+    for (let j = 0; j < this.actuators; j++) d[o++] = seg.actuatorStart[j];
+    for (let j = 0; j < this.actuators; j++) d[o++] = seg.actuatorRate[j];
+    const atStart = seg.eventsAtStart;
+    for (let c = 0; c < this.channels; c++) d[o++] = atStart ? atStart[c] : 0;
+    if (seg.eventTracks && seg.eventTracks.length > 0) this.events.set(n, seg.eventTracks);
+  }
+
+  /** The i-th record held, 0 the oldest, rebuilt as plain objects. */
+  at(i: number): HistoricalSegment {
+    const n = this.count - this.size + i;
+    const d = this.data;
+    let o = (n % this.capacity) * this.stride;
+    const timing = Array.from(d.subarray(o + HEADER, o + HEADER + d[o + 3]));
+    const startTime_us = d[o];
+    const duration_s = d[o + 1];
+    const length = d[o + 2];
+    o += HEADER + MAX_PHASES * PHASE_STRIDE;
+    const take = (k: number) => Array.from(d.subarray(o, (o += k)));
+    const start = take(this.axes);
+    const unit = take(this.axes);
+    const actuatorStart = take(this.actuators);
+    const actuatorRate = take(this.actuators);
+    const eventsAtStart = take(this.channels);
+    return {
+      startTime_us,
+      duration_s,
+      length,
+      timing,
+      start,
+      unit,
+      end: start.map((p, a) => p + unit[a] * length),
+      actuatorStart,
+      actuatorRate,
+      eventsAtStart,
+      eventTracks: this.events.get(n) ?? [],
+    };
+  }
+
+  private startOf = (i: number): number => this.data[((this.count - this.size + i) % this.capacity) * this.stride];
+
+  /** Index of the record running at t_us (the last to start at or before it), or −1. */
+  indexAt(t_us: number): number {
+    return segmentIndexAt(0, this.size, this.startOf, t_us);
+  }
+
+  /** Every track at author time t_us, or null if the history is empty. */
+  sample(t_us: number): TrajectorySample | null {
+    return sampleTimeline(0, this.size, (i) => this.at(i), this.startOf, t_us, 1e-6);
+  }
+
+  /** An event channel's value at t_us: the last value set at or before it (0 before the history). */
+  eventValue(channel: number, t_us: number): number {
+    const i = this.indexAt(t_us);
+    if (i < 0) return 0;
+    const rec = this.at(i);
+    let value = rec.eventsAtStart[channel];
+    const local = (t_us - rec.startTime_us) * 1e-6;
+    for (const track of rec.eventTracks) {
+      if (track.channel !== channel) continue;
+      for (let k = 0; k < track.times.length && track.times[k] <= local; k++) value = track.values[k];
+    }
+    return value;
+  }
+}
