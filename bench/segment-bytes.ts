@@ -8,7 +8,7 @@
  * position track (the protocol's budget is 24; the public MAXL prototype used 52).
  * Framing (seq, type, CRC, COBS, delimiter) is reported separately.
  */
-import { createMAXL } from '../core/index.ts';
+import { createMAXL, type Segment } from '../core/index.ts';
 import { ClockMap } from '../core/net/clockMap.ts';
 import { encodeFrame } from '../core/net/frame.ts';
 import { encodePayload } from '../core/net/messages.ts';
@@ -29,7 +29,7 @@ for (const path of benchPaths(COUNT)) {
   let payload = 0;
   let framed = 0;
   let segments = 0;
-  let batch = [];
+  let batch: Segment[] = [];
   const flush = () => {
     const first = segments - batch.length + 1;
     const messages = [...geometryMessages(batch, [{ space: 'motion', index: 0 }], first, first === 1), ...timingMessages(batch, clock, first, first === 1, 3000)];
