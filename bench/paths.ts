@@ -2,6 +2,8 @@
  * The benchmark paths shared by the planner and wire benchmarks, 100 000 segments
  * each unless asked otherwise. Deterministic: the random walk is seeded.
  */
+import { seededRandom } from '../core/sim/random.ts';
+
 export interface BenchPath {
   name: string;
   describe: string;
@@ -36,18 +38,6 @@ export function rasterZigzag(count = 100_000, piece = 1, rowPitch = 0.1, width =
     row++;
   }
   return { name: 'raster', describe: `raster zigzag, ${piece} mm pieces, ${rowPitch} mm rows`, start: [0, 0], points };
-}
-
-/** mulberry32: a small, well-mixed seeded PRNG. */
-export function seededRandom(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
 }
 
 /** Seeded random walk: steps of 0.05–5 mm in a direction that wanders by up to ±90° per step. */
