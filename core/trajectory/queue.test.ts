@@ -317,3 +317,75 @@ describe('incremental planning', () => {
     );
   });
 });
+
+describe('splitting and braking', () => {
+  const totalTime = (segs: { duration_s: number }[]) => segs.reduce((t, s) => t + s.duration_s, 0);
+
+  it('splits the front segment without changing the plan', () => {
+    const a = createMAXL(config());
+    const b = createMAXL(config());
+    for (const m of [a, b]) {
+      m.queue.append({ endPosition: [100, 0] });
+      m.queue.append({ endPosition: [100, 50] });
+    }
+    const [p1, p2] = b.queue.splitFront(30);
+    expect(p1.length).toBeCloseTo(30, 12);
+    expect(p2.length).toBeCloseTo(70, 12);
+    expect(p2.start).toEqual([30, 0]);
+    expect(p1.moveId).toBe(p2.moveId);
+    for (const m of [a, b]) m.queue.planToRest();
+    const locked = (m: typeof a) => {
+      const out = [];
+      for (let s = m.queue.transmitNext(0); s; s = m.queue.transmitNext(0)) out.push(s);
+      return out;
+    };
+    const whole = locked(a);
+    const split = locked(b);
+    expect(split.length).toBe(3);
+    expect(totalTime(split)).toBeCloseTo(totalTime(whole), 9);
+    // The same motion: positions agree along the way.
+    for (let t = 0; t < totalTime(whole) * 1e6; t += 7919) {
+      const pa = a.sample(t).position;
+      const pb = b.sample(t).position;
+      expect(Math.hypot(pa[0] - pb[0], pa[1] - pb[1])).toBeLessThan(1e-6);
+    }
+  });
+
+  it('brakes to rest as soon as the limits allow, on the path, and holds the rest back', () => {
+    const maxl = createMAXL(config());
+    const q = maxl.queue;
+    for (let k = 1; k <= 20; k++) q.append({ endPosition: [k * 10, 0] }); // 200 mm straight, in 10 mm pieces
+    q.planToRest();
+    const first = [q.transmitNext(0)!, q.transmitNext(0)!, q.transmitNext(0)!];
+    const v2 = first[2].exit2; // speed² the locked path leaves the machine at
+    expect(v2).toBeGreaterThan(0);
+    const next = q.brakeToRest()!;
+    // Rest is reached v²/2a further on, exactly.
+    const stopAt = first[2].end[0] + v2 / (2 * 3000);
+    expect(next.start[0]).toBeCloseTo(stopAt, 9);
+    expect(next.maxEntry2).toBe(0);
+    // Everything up to there decelerates at the limit, and ends at rest there.
+    const braking = [];
+    for (let s = q.transmitNext(0); s && s !== next; s = q.transmitNext(0)) {
+      braking.push(s);
+      if (s.end[0] >= stopAt - 1e-9) break;
+    }
+    expect(braking[braking.length - 1].exit2).toBe(0);
+    for (const s of braking) for (const ph of phasesOf(s.timing!)) expect(ph.a0).toBeCloseTo(-3000, 6);
+    // The path after the stop is still queued, and starts from rest.
+    expect(q.peekUntransmitted()).toBe(next);
+    expect(q.segments().slice(-1)[0].end).toEqual([200, 0]);
+  });
+
+  it('cancels from a segment on', () => {
+    const maxl = createMAXL(config());
+    const q = maxl.queue;
+    for (let k = 1; k <= 5; k++) q.append({ endPosition: [k * 10, 0] });
+    const third = q.segments()[2];
+    q.cancelFrom(third.id);
+    expect(q.segments().length).toBe(2);
+    expect(q.tailPosition).toEqual([20, 0]);
+    q.transmitNext(0);
+    expect(() => q.cancelFrom(q.segments()[0].id)).toThrow(/locked/);
+  });
+});

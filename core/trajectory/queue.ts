@@ -18,7 +18,7 @@ import { MaxlError } from '../errors.ts';
 import type { ResolvedConfig } from '../config/types.ts';
 import { LookaheadPlanner } from '../plan/lookahead.ts';
 import { buildEventTracks, type EventTrack } from './events.ts';
-import { segmentsForMove, validateMove, type Move, type PathTail, type ValidatedMove } from './moves.ts';
+import { segmentsForMove, validateMove, ZERO_LENGTH_MM, type Move, type PathTail, type ValidatedMove } from './moves.ts';
 import { Segment, type SegmentState } from './segment.ts';
 
 export type QueueEventType = 'added' | 'planned' | 'replanned' | 'transmitted' | 'historical' | 'removed';
@@ -122,17 +122,9 @@ export class TrajectoryQueue {
     return this.lockedExit2 > 0;
   }
 
+  /** A live segment by id (ids are unique, but pieces of a split segment are numbered after it). */
   get(id: number): Segment | undefined {
-    // Ids rise along the queue, so a binary search finds one.
-    let lo = this.head;
-    let hi = this.live.length - 1;
-    while (lo <= hi) {
-      const mid = (lo + hi) >> 1;
-      const s = this.live[mid];
-      if (s.id === id) return s;
-      if (s.id < id) lo = mid + 1;
-      else hi = mid - 1;
-    }
+    for (let i = this.live.length - 1; i >= this.head; i--) if (this.live[i].id === id) return this.live[i];
     return undefined;
   }
 
@@ -245,6 +237,120 @@ export class TrajectoryQueue {
   /** Cancels every untransmitted segment. */
   cancelAll(): void {
     if (this.untransmitted > 0) this.edit(this.live.length - this.untransmitted, null, false);
+  }
+
+  /** Cancels the untransmitted segment `id` and everything after it. */
+  cancelFrom(id: number): void {
+    const first = this.live.length - this.untransmitted;
+    const index = this.live.findIndex((seg, i) => i >= first && seg.id === id);
+    if (index < 0) {
+      if (this.get(id)) throw new MaxlError('SEGMENT_LOCKED', `segment ${id} ${LOCKED_MESSAGE}`);
+      throw new MaxlError('SEGMENT_NOT_FOUND', `there is no segment ${id}`);
+    }
+    this.edit(index, null, false);
+  }
+
+  /**
+   * Splits the first untransmitted segment `distance` mm along it into two
+   * segments of the same move, so that an executor can lock only the first piece:
+   * only as much of the path as it must, however long the segments. A straight
+   * junction within a move does not limit speed, so the plan is the same as before
+   * the split. Returns the two pieces.
+   */
+  splitFront(distance: number): [Segment, Segment] {
+    const index = this.live.length - this.untransmitted;
+    const seg = this.live[index];
+    if (!seg) throw new MaxlError('SEGMENT_NOT_FOUND', 'there is no untransmitted segment to split');
+    if (!(distance > ZERO_LENGTH_MM && distance < seg.length - ZERO_LENGTH_MM)) {
+      throw new MaxlError('MOVE_INVALID', `cannot split a ${seg.length} mm segment at ${distance} mm`, 'distance');
+    }
+    return this.splitAt(index, distance, false);
+  }
+
+  /**
+   * Plans the machine to rest as soon as its limits allow, along the path: from
+   * the speed the transmitted path leaves it at, braking at each segment's
+   * acceleration limit through the untransmitted segments. The segment in which
+   * it comes to rest is split there, and the path after that point starts from
+   * rest. Returns the first segment after the stopping point (for an executor to
+   * hold back, or to cancel from), or null if the path ends first.
+   */
+  brakeToRest(): Segment | null {
+    let v2 = this.planner.frontSpeed2;
+    const first = this.live.length - this.untransmitted;
+    for (let i = first; i < this.live.length; i++) {
+      const seg = this.live[i];
+      const reach = 2 * seg.accel * seg.length;
+      if (v2 >= reach && i + 1 < this.live.length) {
+        v2 -= reach;
+        continue;
+      }
+      if (v2 >= reach) return null; // rest only at the end of the path, which plans to rest anyway
+      // At rest after d = v²/2a into this segment.
+      const d = v2 / (2 * seg.accel);
+      if (d <= ZERO_LENGTH_MM) return this.restBefore(i);
+      if (d >= seg.length - ZERO_LENGTH_MM) return i + 1 < this.live.length ? this.restBefore(i + 1) : null;
+      return this.splitAt(i, d, true)[1];
+    }
+    return null;
+  }
+
+  /** Makes live[index] start from rest (its entry cap 0), replanning from there. */
+  private restBefore(index: number): Segment {
+    const seg = this.live[index];
+    this.replanFrom(index, () => {
+      seg.maxEntry2 = 0;
+    });
+    return seg;
+  }
+
+  /** Splits live[index] at `distance`; with `rest`, the second piece starts from rest. */
+  private splitAt(index: number, distance: number, rest: boolean): [Segment, Segment] {
+    const seg = this.live[index];
+    const mid = seg.start.map((p, i) => p + seg.unit[i] * distance);
+    const make = (id: number, start: number[], end: number[], length: number, offset: number, actuatorStart: number[]) => {
+      const piece = new Segment(id, seg.moveId, start, end, seg.unit, length, offset, seg.source);
+      piece.actuatorStart = actuatorStart;
+      piece.actuatorRate = seg.actuatorRate;
+      piece.accel = seg.accel;
+      piece.cruise2 = seg.cruise2;
+      return piece;
+    };
+    const a = make(this.nextSegmentId++, seg.start, mid, distance, seg.moveOffset, seg.actuatorStart);
+    const b = make(
+      this.nextSegmentId++,
+      mid,
+      seg.end,
+      seg.length - distance,
+      seg.moveOffset + distance,
+      seg.actuatorStart.map((p, j) => p + seg.actuatorRate[j] * distance),
+    );
+    a.maxEntry2 = seg.maxEntry2;
+    b.maxEntry2 = rest ? 0 : seg.cruise2; // straight on: only the cruise cap applies
+    this.replanFrom(index, () => {
+      this.live.splice(index, 1, a, b);
+      this.untransmitted++;
+    });
+    this.emit('removed', [seg]);
+    this.emit('added', [a, b]);
+    this.flushPlanned();
+    return [a, b];
+  }
+
+  /**
+   * Re-runs the planner over the untransmitted segments from live[index] on, after
+   * `change` has edited them in place. Ids change for neither the kept segments nor
+   * their order; planned states are recomputed.
+   */
+  private replanFrom(index: number, change: () => void): void {
+    const firstUntransmitted = this.live.length - this.untransmitted;
+    const wasPlanned = this.live.slice(firstUntransmitted).filter((seg) => seg.state === 'planned');
+    for (let i = firstUntransmitted; i < this.live.length; i++) this.live[i].state = 'unplanned';
+    this.newlyPlanned = [];
+    this.planner.truncate(index - firstUntransmitted);
+    change();
+    for (let i = index; i < this.live.length; i++) this.planner.append(this.live[i]);
+    this.settleReplan(wasPlanned);
   }
 
   /** Index in `live` of a move's first segment, which must be untransmitted, as must the whole move. */
