@@ -11,7 +11,14 @@ export type MaxlErrorCode =
   | 'SEGMENT_LOCKED'
   | 'SEGMENT_NOT_FOUND'
   | 'QUEUE_CLOSED'
-  | 'CANNOT_STOP_IN_PATH';
+  | 'CANNOT_STOP_IN_PATH'
+  | 'DEVICE_UNAVAILABLE'
+  | 'VERSION_MISMATCH'
+  | 'SUBSCRIPTION_MISMATCH'
+  | 'LINK_LOST'
+  | 'DEVICE_REFUSED'
+  | 'BUFFER_CONFLICT'
+  | 'NOT_STARTED';
 
 export class MaxlError extends Error {
   readonly code: MaxlErrorCode;

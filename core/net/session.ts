@@ -1,0 +1,437 @@
+/**
+ * A session with one device over one link (docs/protocol.md):
+ *  - opening: HELLO_REQUEST, then the device's HELLO and one READER per reader,
+ *    refusing a peer of another protocol version with a message naming both;
+ *  - reliable, ordered sending: sequence numbers, a window of unacknowledged
+ *    frames, go-back-N resends on BAD_CRC, OUT_OF_ORDER or a timeout;
+ *  - clock sync: periodic pings folded into a ClockSync;
+ *  - receiving: acks and nacks, pongs, STATUS, SAMPLES;
+ *  - health: silence for too long means the link is lost; an unasked-for HELLO
+ *    means the device rebooted (and forgot its queue).
+ */
+import { MaxlError } from '../errors.ts';
+import type { Scheduler, Timer } from '../time/scheduler.ts';
+import { ClockSync } from './clockSync.ts';
+import { encodeFrame, FrameReceiver, type RawPacket } from './frame.ts';
+import type { Link } from './link.ts';
+import { decodePayload, type Message, type MessageOf, WireError } from './messages.ts';
+import { MessageType, NackReason, nameOf, PROTOCOL_VERSION, ReaderKind, type NackReasonName, type ReaderKindName } from './protocol.ts';
+
+export interface ReaderInfo {
+  index: number;
+  name: string;
+  kind: ReaderKindName;
+  /** values per sample, for sensors */
+  channels: number;
+}
+
+export interface DeviceInfo {
+  name: string;
+  protocol: number;
+  firmware: string;
+  clockHz: number;
+  segmentCapacity: number;
+  eventCapacity: number;
+  readers: ReaderInfo[];
+}
+
+/** How a sent frame ended: acknowledged, or refused with a reason (the device consumed it). */
+export type SendResult = { ok: true } | { ok: false; reason: NackReasonName; detail: number };
+
+export interface SessionOptions {
+  /** ms-scale timings, in µs */
+  helloTimeout_us: number;
+  /** resend unacknowledged frames after this long (µs) at least; 3·RTT when larger */
+  resendAfter_us: number;
+  /** the link is lost after this long without a frame from the device (µs) */
+  silence_us: number;
+  /** ping period (µs) during a session */
+  pingEvery_us: number;
+  /** unacknowledged frames in flight at most */
+  window: number;
+}
+
+export const DEFAULT_SESSION: SessionOptions = {
+  helloTimeout_us: 1_000_000,
+  resendAfter_us: 20_000,
+  silence_us: 300_000,
+  pingEvery_us: 20_000,
+  window: 8,
+};
+
+export interface SessionEvents {
+  status?(status: MessageOf<'STATUS'>, at_us: number): void;
+  samples?(samples: MessageOf<'SAMPLES'>, at_us: number): void;
+  /** the link went silent, or broke: the session is over */
+  lost?(reason: string): void;
+  /** the device sent HELLO unasked: it restarted and lost everything queued */
+  rebooted?(): void;
+  /** a frame the session could not use (bad CRC from the device, malformed…) */
+  wireError?(error: WireError): void;
+}
+
+interface Outgoing {
+  seq: number;
+  frame: Uint8Array;
+  message: Message;
+  sentAt: number;
+  resolve(result: SendResult): void;
+}
+
+export class DeviceSession {
+  readonly link: Link;
+  readonly clock = new ClockSync();
+  info: DeviceInfo | null = null;
+  /** Free queue space the device last reported. */
+  freeSegments = 0;
+  freeEvents = 0;
+  lastStatus: MessageOf<'STATUS'> | null = null;
+  /** Frames resent so far (diagnostics). */
+  resends = 0;
+  state: 'closed' | 'opening' | 'open' | 'lost' = 'closed';
+
+  private readonly scheduler: Scheduler;
+  private readonly options: SessionOptions;
+  private readonly events: SessionEvents;
+  private writer: WritableStreamDefaultWriter<Uint8Array> | null = null;
+  private writeChain: Promise<void> = Promise.resolve();
+  private nextSeq = 1;
+  /** Frames sent and not yet acknowledged, oldest first, then frames waiting for the window. */
+  private inFlight: Outgoing[] = [];
+  private waiting: Outgoing[] = [];
+  private receiver: FrameReceiver;
+  private lastHeard = 0;
+  private timers: Timer[] = [];
+  private pendingHello: { resolve(info: DeviceInfo): void; reject(err: Error): void; hello?: MessageOf<'HELLO'>; readers: ReaderInfo[] } | null = null;
+  private pings = new Map<number, number>();
+  private lastHelloRequestAt = -Infinity;
+  private nextPingId = 1;
+
+  constructor(link: Link, scheduler: Scheduler, events: SessionEvents = {}, options: Partial<SessionOptions> = {}) {
+    this.link = link;
+    this.scheduler = scheduler;
+    this.events = events;
+    this.options = { ...DEFAULT_SESSION, ...options };
+    this.receiver = new FrameReceiver(
+      (p) => this.onPacket(p),
+      (e) => this.events.wireError?.(e),
+    );
+  }
+
+  get label(): string {
+    return this.info?.name ?? this.link.label ?? 'device';
+  }
+
+  /** Round-trip time, µs (median of recent pings). */
+  get rtt_us(): number {
+    return this.clock.rtt;
+  }
+
+  /**
+   * Opens the session: says hello, learns the device and its readers, and starts
+   * pinging. Rejects with a MaxlError if the device does not answer, or speaks
+   * another protocol version.
+   */
+  async open(): Promise<DeviceInfo> {
+    this.state = 'opening';
+    this.writer = this.link.writable.getWriter();
+    this.lastHeard = this.scheduler.now();
+    void this.readLoop();
+    const info = await new Promise<DeviceInfo>((resolve, reject) => {
+      this.pendingHello = { resolve, reject, readers: [] };
+      const hello = encodeFrame(0, { type: 'HELLO_REQUEST', protocol: PROTOCOL_VERSION });
+      // Said again every 100 ms until answered: the first may be lost, or the board still booting.
+      const say = () => {
+        if (!this.pendingHello) return;
+        this.lastHelloRequestAt = this.scheduler.now();
+        this.write(hello);
+        this.timers.push(this.scheduler.after(100_000, say));
+      };
+      say();
+      const timer = this.scheduler.after(this.options.helloTimeout_us, () => {
+        if (this.pendingHello) {
+          this.pendingHello = null;
+          reject(new MaxlError('DEVICE_UNAVAILABLE', `no answer to hello within ${this.options.helloTimeout_us / 1000} ms on ${this.link.label ?? 'a link'}: is it a MAXL device, at the right baud rate?`));
+        }
+      });
+      this.timers.push(timer);
+    });
+    this.info = info;
+    this.state = 'open';
+    this.schedulePing();
+    this.scheduleHealth();
+    return info;
+  }
+
+  /** Sends a message reliably, in order. Resolves when the device acknowledged or refused it. */
+  send(message: Message): Promise<SendResult> {
+    if (this.state !== 'open') return Promise.reject(new MaxlError('DEVICE_UNAVAILABLE', `${this.label}: the session is ${this.state}`));
+    return new Promise((resolve) => {
+      const seq = this.nextSeq;
+      this.nextSeq = (this.nextSeq + 1) & 0xff;
+      const out: Outgoing = { seq, frame: encodeFrame(seq, message), message, sentAt: 0, resolve };
+      this.waiting.push(out);
+      this.fillWindow();
+    });
+  }
+
+  /** Frames queued or in flight. */
+  get backlog(): number {
+    return this.inFlight.length + this.waiting.length;
+  }
+
+  /** Stops timers and releases the link. */
+  async close(): Promise<void> {
+    this.stopTimers();
+    this.state = 'closed';
+    for (const o of [...this.inFlight, ...this.waiting]) o.resolve({ ok: false, reason: 'UNKNOWN_MESSAGE', detail: 0 });
+    this.inFlight = [];
+    this.waiting = [];
+    try {
+      this.writer?.releaseLock();
+    } catch {
+      // already released
+    }
+    await this.link.close?.();
+  }
+
+  // --- sending ---
+
+  private write(frame: Uint8Array, stamp?: () => void): void {
+    const writer = this.writer;
+    if (!writer) return;
+    this.writeChain = this.writeChain.then(async () => {
+      stamp?.();
+      try {
+        await writer.write(frame);
+      } catch (err) {
+        this.lose(`write failed: ${(err as Error).message}`);
+      }
+    });
+  }
+
+  private fillWindow(): void {
+    while (this.waiting.length > 0 && this.inFlight.length < this.options.window) {
+      const out = this.waiting.shift() as Outgoing;
+      this.transmit(out);
+      this.inFlight.push(out);
+    }
+  }
+
+  private transmit(out: Outgoing): void {
+    out.sentAt = this.scheduler.now();
+    // A ping is stamped as its first copy enters the link. (If that copy was lost, the
+    // stamp is early: the exchange then looks slow, which the envelopes ignore.)
+    const pingId = out.message.type === 'PING' ? out.message.pingId : -1;
+    this.write(out.frame, pingId >= 0 && !this.pings.has(pingId) ? () => this.pings.set(pingId, this.scheduler.now()) : undefined);
+  }
+
+  /** Go-back-N: resend every frame in flight from `seq` on. */
+  private resendFrom(seq: number): void {
+    const at = this.inFlight.findIndex((o) => o.seq === seq);
+    if (at < 0) return;
+    for (let k = at; k < this.inFlight.length; k++) {
+      this.resends++;
+      this.transmit(this.inFlight[k]);
+    }
+  }
+
+  /** Completes every frame in flight up to and including `seq` (acks are cumulative: the device works in order). */
+  private complete(seq: number, result: SendResult): void {
+    const at = this.inFlight.findIndex((o) => o.seq === seq);
+    if (at < 0) return;
+    const done = this.inFlight.splice(0, at + 1);
+    done.forEach((o, k) => o.resolve(k === done.length - 1 ? result : { ok: true }));
+    this.fillWindow();
+  }
+
+  // --- receiving ---
+
+  private async readLoop(): Promise<void> {
+    const reader = this.link.readable.getReader();
+    try {
+      for (;;) {
+        const { value, done } = await reader.read();
+        if (done) break;
+        if (value) this.receiver.push(value);
+      }
+      this.lose('the link closed');
+    } catch (err) {
+      this.lose(`the link failed: ${(err as Error).message}`);
+    } finally {
+      reader.releaseLock();
+    }
+  }
+
+  private onPacket(p: RawPacket): void {
+    const now = this.scheduler.now();
+    this.lastHeard = now;
+    let message: Message;
+    try {
+      const channels = p.typeCode === MessageType.SAMPLES ? (this.info?.readers[p.payload[0]]?.channels ?? 0) : 0;
+      message = decodePayload(p.typeCode, p.payload, { positionSlots: 0, channels }, p.seq);
+    } catch (err) {
+      if (err instanceof WireError) {
+        this.events.wireError?.(err);
+        return;
+      }
+      throw err;
+    }
+    switch (message.type) {
+      case 'HELLO':
+        this.onHello(message);
+        break;
+      case 'READER':
+        this.onReader(message);
+        break;
+      case 'ACK':
+        this.freeSegments = message.freeSegments;
+        this.freeEvents = message.freeEvents;
+        this.complete(message.ackSeq, { ok: true });
+        break;
+      case 'NACK':
+        this.onNack(message);
+        break;
+      case 'PONG': {
+        const sent = this.pings.get(message.pingId);
+        if (sent !== undefined) {
+          this.pings.delete(message.pingId);
+          this.clock.add({ authorSend: sent, authorReceive: now, deviceReceive: message.rxTime, deviceReply: message.txTime });
+        }
+        break;
+      }
+      case 'STATUS':
+        this.lastStatus = message;
+        this.events.status?.(message, now);
+        break;
+      case 'SAMPLES':
+        this.events.samples?.(message, now);
+        break;
+      default:
+        this.events.wireError?.(new WireError('UNKNOWN_MESSAGE', `${message.type} is not a device-to-author message`));
+    }
+  }
+
+  private onHello(hello: MessageOf<'HELLO'>): void {
+    const pending = this.pendingHello;
+    if (!pending) {
+      // The answer to a repeated hello request, late: nothing happened.
+      if (this.scheduler.now() - this.lastHelloRequestAt < Math.max(500_000, 4 * (this.clock.rttHigh || 0))) return;
+      // Unasked: the device restarted.
+      if (this.state === 'open') {
+        this.events.rebooted?.();
+        this.lose('the device restarted');
+      }
+      return;
+    }
+    if (hello.protocol !== PROTOCOL_VERSION) {
+      this.pendingHello = null;
+      pending.reject(
+        new MaxlError(
+          'VERSION_MISMATCH',
+          `device "${hello.name}" speaks MAXL protocol ${hello.protocol} (firmware ${hello.fwMajor}.${hello.fwMinor}.${hello.fwPatch}); this author speaks protocol ${PROTOCOL_VERSION}. Update the firmware or the workbench so they match.`,
+        ),
+      );
+      return;
+    }
+    pending.hello = hello;
+    this.finishHello();
+  }
+
+  private onReader(reader: MessageOf<'READER'>): void {
+    const pending = this.pendingHello;
+    if (!pending) return;
+    pending.readers[reader.index] = {
+      index: reader.index,
+      name: reader.name,
+      kind: (nameOf(ReaderKind, reader.kind) ?? 'position') as ReaderKindName,
+      channels: reader.channels,
+    };
+    this.finishHello();
+  }
+
+  private finishHello(): void {
+    const pending = this.pendingHello;
+    const hello = pending?.hello;
+    if (!pending || !hello) return;
+    const readers = pending.readers.filter(Boolean);
+    if (readers.length < hello.readerCount) return;
+    this.pendingHello = null;
+    this.freeSegments = hello.segmentCapacity;
+    this.freeEvents = hello.eventCapacity;
+    pending.resolve({
+      name: hello.name,
+      protocol: hello.protocol,
+      firmware: `${hello.fwMajor}.${hello.fwMinor}.${hello.fwPatch}`,
+      clockHz: hello.clockHz,
+      segmentCapacity: hello.segmentCapacity,
+      eventCapacity: hello.eventCapacity,
+      readers,
+    });
+  }
+
+  private onNack(nack: MessageOf<'NACK'>): void {
+    const reason = nameOf(NackReason, nack.reason) ?? 'MALFORMED';
+    if (reason === 'BAD_CRC' || reason === 'OUT_OF_ORDER') {
+      // The device expects `seq` (BAD_CRC) or `detail` (OUT_OF_ORDER): everything before it arrived.
+      const expected = reason === 'OUT_OF_ORDER' ? nack.detail & 0xff : nack.seq;
+      const before = (expected - 1) & 0xff;
+      if (this.inFlight.some((o) => o.seq === before)) this.complete(before, { ok: true });
+      this.resendFrom(expected);
+      return;
+    }
+    if (reason === 'VERSION_MISMATCH' && this.pendingHello) return; // the HELLO that follows says more
+    this.complete(nack.seq, { ok: false, reason, detail: nack.detail });
+  }
+
+  // --- timers ---
+
+  private schedulePing(): void {
+    const tick = () => {
+      if (this.state !== 'open') return;
+      // Pings do not queue behind a backlog: a late ping would only add noise.
+      if (this.backlog < this.options.window) {
+        const pingId = this.nextPingId;
+        this.nextPingId = (this.nextPingId % 0xffff) + 1;
+        void this.send({ type: 'PING', pingId });
+      }
+      this.timers.push(this.scheduler.after(this.options.pingEvery_us, tick));
+    };
+    tick();
+  }
+
+  private scheduleHealth(): void {
+    const check = () => {
+      if (this.state !== 'open') return;
+      const now = this.scheduler.now();
+      if (now - this.lastHeard > this.options.silence_us) {
+        this.lose(`no frame from the device for ${((now - this.lastHeard) / 1000).toFixed(0)} ms`);
+        return;
+      }
+      const oldest = this.inFlight[0];
+      const resendAfter = Math.max(this.options.resendAfter_us, 3 * (this.clock.rttHigh || 0));
+      if (oldest && now - oldest.sentAt > resendAfter) this.resendFrom(oldest.seq);
+      this.timers.push(this.scheduler.after(Math.min(5_000, this.options.resendAfter_us / 2), check));
+    };
+    this.timers.push(this.scheduler.after(5_000, check));
+  }
+
+  private stopTimers(): void {
+    for (const t of this.timers) t.cancel();
+    this.timers = [];
+  }
+
+  private lose(reason: string): void {
+    if (this.state === 'lost' || this.state === 'closed') return;
+    this.state = 'lost';
+    this.stopTimers();
+    if (this.pendingHello) {
+      this.pendingHello.reject(new MaxlError('DEVICE_UNAVAILABLE', `${this.label}: ${reason}`));
+      this.pendingHello = null;
+    }
+    for (const o of [...this.inFlight, ...this.waiting]) o.resolve({ ok: false, reason: 'UNKNOWN_MESSAGE', detail: 0 });
+    this.inFlight = [];
+    this.waiting = [];
+    this.events.lost?.(reason);
+  }
+}
