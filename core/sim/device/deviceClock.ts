@@ -1,0 +1,41 @@
+/**
+ * A device's crystal: a free-running u32 µs counter that started at some
+ * offset, runs fast or slow by a few ppm, and wraps every 2³² µs (71.6 min).
+ *
+ *   micros(t) = floor(offset_us + t · (1 + ppm·10⁻⁶)) mod 2³²
+ *
+ * where t is author µs (the scheduler's now()). The author never sees this
+ * mapping; it estimates it from ping exchanges (DESIGN.md decision 3), and
+ * tests compare its estimate with `deviceTimeAt`.
+ */
+export interface DeviceClockConfig {
+  /** Device µs at author time 0 (may be beyond 2³²; it is reduced). */
+  offset_us: number;
+  /** Rate error: +50 means the device counts 50 µs too many per second. */
+  ppm: number;
+}
+
+const WRAP = 4294967296;
+
+export class DeviceClock {
+  constructor(readonly config: DeviceClockConfig) {}
+
+  /** The device's unwrapped count at author time t (µs, float). */
+  deviceTimeAt(t_us: number): number {
+    return this.config.offset_us + t_us * (1 + this.config.ppm * 1e-6);
+  }
+
+  /** What micros() returns at author time t: the wrapped u32. */
+  microsAt(t_us: number): number {
+    const n = Math.floor(this.deviceTimeAt(t_us));
+    return ((n % WRAP) + WRAP) % WRAP;
+  }
+
+  /**
+   * The first author time at which the unwrapped device count reaches `deviceCount`
+   * (inverse of deviceTimeAt, up to float rounding).
+   */
+  authorTimeAt(deviceCount: number): number {
+    return (deviceCount - this.config.offset_us) / (1 + this.config.ppm * 1e-6);
+  }
+}
