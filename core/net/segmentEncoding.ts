@@ -84,35 +84,44 @@ function varintSize(v: number): number {
   return n;
 }
 
-/** One segment's TIMING entry in the device's clock, and its device start time. */
-export function timingEntry(seg: EncodableSegment, clock: ClockMap): { entry: TimingSegment; start: number } {
+/**
+ * One segment's TIMING entry in the device's clock: its device start (u32), and
+ * its end (unwrapped device µs). `startAt` pins the first boundary (the end of the
+ * segment before it on the device) so that a contiguous segment stays contiguous
+ * even when the clock model has been refitted since; later boundaries never run
+ * backwards.
+ */
+export function timingEntry(seg: EncodableSegment, clock: ClockMap, startAt?: number): { entry: TimingSegment; start: number; end: number } {
   const timing = seg.timing;
   if (timing === null) throw new Error('timingEntry: segment is not timed');
   const phases = timing.length / PHASE_STRIDE;
   const boundaries: number[] = [];
   let shape = 0;
   let accel = 0;
+  const at = (t_s: number) => Math.round(clock.toDeviceExact(seg.startTime_us + t_s * 1e6));
   for (let k = 0; k < phases; k++) {
     const o = k * PHASE_STRIDE;
-    boundaries.push(Math.round(clock.toDeviceExact(seg.startTime_us + timing[o] * 1e6)));
+    boundaries.push(k === 0 && startAt !== undefined ? startAt : Math.max(at(timing[o]), boundaries[k - 1] ?? -Infinity));
     const a = timing[o + 4];
     shape |= (a > 0 ? PhaseShape.accelerate : a < 0 ? PhaseShape.decelerate : PhaseShape.cruise) << (2 * k);
     if (a !== 0) accel = Math.abs(a);
   }
   const last = (phases - 1) * PHASE_STRIDE;
-  boundaries.push(Math.round(clock.toDeviceExact(seg.startTime_us + (timing[last] + timing[last + 1]) * 1e6)));
+  boundaries.push(Math.max(at(timing[last] + timing[last + 1]), boundaries[phases - 1]));
   const durations = boundaries.slice(1).map((b, k) => b - boundaries[k]);
   // d²σ/dt_dev² = (a/L)·(dt_author/dt_dev)²
   const alpha = seg.length > 0 ? accel / seg.length / (clock.rate * clock.rate) : 0;
   const start = ((boundaries[0] % 0x1_0000_0000) + 0x1_0000_0000) % 0x1_0000_0000;
-  return { entry: { shape, durations, alpha }, start };
+  return { entry: { shape, durations, alpha }, start, end: boundaries[phases] };
 }
 
 /**
- * TIMING messages for consecutive timed segments. The first carries its start when
- * `withStart` (after rest, or first of a session); the rest follow contiguously.
- * `stopDecel` (mm/s², in author time) is how hard a device brakes along
- * provisional geometry if no more timing follows a message's last segment.
+ * TIMING messages for consecutive, contiguous timed segments. The first carries its
+ * start when `withStart` (after rest, or first of a session); otherwise it follows
+ * the device's timed path, which ends at `startAt` (unwrapped device µs). The
+ * device end of the last one is returned in `end`. `stopDecel` (mm/s², in author
+ * time) is how hard a device brakes along provisional geometry if no more timing
+ * follows a message's last segment.
  */
 export function timingMessages(
   segments: readonly EncodableSegment[],
@@ -120,12 +129,16 @@ export function timingMessages(
   firstId: number,
   withStart: boolean,
   stopDecel: number,
-): MessageOf<'TIMING'>[] {
-  const out: MessageOf<'TIMING'>[] = [];
+  startAt?: number,
+): MessageOf<'TIMING'>[] & { end?: number } {
+  const out: MessageOf<'TIMING'>[] & { end?: number } = [];
   let current: MessageOf<'TIMING'> | null = null;
   let size = 0;
+  let chain = withStart ? undefined : startAt;
   segments.forEach((seg, i) => {
-    const { entry, start } = timingEntry(seg, clock);
+    const { entry, start, end } = timingEntry(seg, clock, chain);
+    chain = end;
+    out.end = end;
     const entrySize = 1 + entry.durations.reduce((n, d) => n + varintSize(d), 0) + 4;
     const needStart = withStart && i === 0;
     if (current === null || size + entrySize > MAX_PAYLOAD || current.count === 255) {

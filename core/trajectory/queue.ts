@@ -128,6 +128,11 @@ export class TrajectoryQueue {
     return undefined;
   }
 
+  /** The i-th untransmitted segment (0 = the next to transmit), if any. */
+  untransmittedAt(i: number): Segment | undefined {
+    return i >= 0 && i < this.untransmitted ? this.live[this.live.length - this.untransmitted + i] : undefined;
+  }
+
   /** The first segment not yet transmitted, if any. */
   peekUntransmitted(): Segment | undefined {
     return this.untransmitted > 0 ? this.planner.at(0) : undefined;
@@ -448,17 +453,11 @@ export class TrajectoryQueue {
    * Throws the MaxlError of a failed event evaluator, leaving the segment queued.
    */
   transmitNext(earliestStart_us: number): Segment | undefined {
-    if (this.untransmitted === 0) return undefined;
-    const next = this.planner.at(0);
-    if (next.state !== 'planned') {
-      // Time it with the exit speed locking will give it, so that a failing event
-      // evaluator throws before anything is locked.
-      next.exit2 = this.planner.frontExit2();
-      next.time();
-    }
+    const next = this.timeFront();
+    if (next === undefined) return undefined;
     const tracks = this.eventTracksOf(next);
     const seg = this.planner.lockFront();
-    seg.startTime_us = this.lockedExit2 > 0 ? this.lockedEnd_us : Math.max(earliestStart_us, this.lockedEnd_us);
+    seg.startTime_us = this.nextStart_us(earliestStart_us);
     seg.state = 'transmitted';
     this.untransmitted--;
     this.lockedEnd_us = seg.endTime_us;
@@ -474,6 +473,30 @@ export class TrajectoryQueue {
     this.flushPlanned();
     this.wakeWaiters();
     return seg;
+  }
+
+  /**
+   * The first untransmitted segment, timed as transmitNext() would lock it now
+   * (its exit speed as the plan stands, if that is not final yet).
+   */
+  timeFront(): Segment | undefined {
+    if (this.untransmitted === 0) return undefined;
+    const next = this.planner.at(0);
+    if (next.state !== 'planned') {
+      next.exit2 = this.planner.frontExit2();
+      next.time();
+    }
+    return next;
+  }
+
+  /** Author µs at which the next transmitted segment would start, given the earliest start allowed. */
+  nextStart_us(earliestStart_us: number): number {
+    return this.lockedExit2 > 0 ? this.lockedEnd_us : Math.max(earliestStart_us, this.lockedEnd_us);
+  }
+
+  /** Squared speed (mm²/s²) at which the transmitted path ends. */
+  get transmittedExit2(): number {
+    return this.lockedExit2;
   }
 
   /**

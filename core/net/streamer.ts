@@ -1,0 +1,425 @@
+/**
+ * Minimal buffering (the paper's Table 1, DESIGN.md decision 4): streams the
+ * queue's segments to every device that reads the trajectory, just in time.
+ *
+ * Each pump, for all devices in lock-step:
+ *  1. Timing. While the transmitted path ends less than `lead` ahead of now, or
+ *     fewer than 2 transmitted segments are still to run, lock the next segment
+ *     (queue.transmitNext) and send its TIMING and EVENTS. lead = 2·RTT plus a
+ *     margin: a segment sent now arrives before the one before it ends. A segment
+ *     reaching far past the horizon is split first (queue.splitFront), so only a
+ *     slice of it is locked and the rest stays editable: a hold-to-jog stops within
+ *     a lead time, and a slow stream of points keeps moving instead of stopping at
+ *     each point.
+ *  2. Geometry. Every device also holds provisional geometry (segments without
+ *     timing) beyond the timed path, at least the distance needed to brake from
+ *     the timed path's exit speed at `stopDecel`. If timing stops coming (a dead
+ *     link, a pause), every device brakes along that same geometry from the same
+ *     instant at the same rate, so all come to rest at the same point on the path.
+ *     It is sent before the timing that needs it.
+ *  3. Capacity. Geometry on a device never exceeds its queue. When a segment's
+ *     timing plus its braking geometry would not fit (tiny fast segments), that is a
+ *     buffer conflict: reported, and the machine is brought to rest (the paper's
+ *     "error condition and a systems halt"). Or, with bufferConflict 'slow', the
+ *     runtime caps each segment's speed so that the conflict cannot arise.
+ *
+ * Edits to provisional segments (a cancel, a replace, a split) are followed on the
+ * devices with REPLACE_TAIL and fresh geometry.
+ */
+import type { Scheduler, Timer } from '../time/scheduler.ts';
+import type { TrajectoryQueue, QueueEvent } from '../trajectory/queue.ts';
+import type { Segment } from '../trajectory/segment.ts';
+import { evaluateTiming } from '../plan/phases.ts';
+import type { DeviceSession, SendResult } from './session.ts';
+import type { Message, MessageOf } from './messages.ts';
+import { geometryMessages, timingMessages, type PositionSlot } from './segmentEncoding.ts';
+import { MAX_PAYLOAD } from './protocol.ts';
+
+/** What one device reads of the trajectory, and how to reach it. */
+export interface DeviceBinding {
+  name: string;
+  session: DeviceSession;
+  /** position tracks, in slot order */
+  positionSlots: PositionSlot[];
+  /** event channel index → event slot */
+  eventSlots: Map<number, number>;
+  /** queue depth the device reported */
+  capacity: number;
+}
+
+export interface StreamerOptions {
+  /** lead time at least this (µs) */
+  minLead_us: number;
+  /** added to 2·RTT for the lead time (µs): the author's and the device's own latency */
+  leadMargin_us: number;
+  /** a segment after rest starts this long after RTT from now (µs) */
+  startMargin_us: number;
+  /** long segments are locked in slices reaching this far past the horizon (µs) */
+  slice_us: number;
+  /** pump period while anything moves or waits (µs) */
+  tick_us: number;
+}
+
+export const DEFAULT_STREAMER: StreamerOptions = {
+  minLead_us: 2_000,
+  leadMargin_us: 1_000,
+  startMargin_us: 700,
+  slice_us: 4_000,
+  tick_us: 1_000,
+};
+
+export type StreamerEvent =
+  | { type: 'conflict'; message: string }
+  | { type: 'refused'; device: string; reason: string; detail: number; message: Message }
+  | { type: 'idle' };
+
+interface DeviceState {
+  binding: DeviceBinding;
+  /** device µs (unwrapped) at which its timed path ends, and the author µs it stands for */
+  timedEnd: number | null;
+  timedEndAuthor: number;
+  /** the next GEOMETRY must say where each slot starts */
+  needP0: boolean;
+  /** event entries waiting for room on the device */
+  pendingEvents: MessageOf<'EVENTS'>[];
+}
+
+const MIN_SPLIT_MM = 0.01;
+
+export class Streamer {
+  private readonly queue: TrajectoryQueue;
+  private readonly scheduler: Scheduler;
+  private readonly devices: DeviceState[];
+  private readonly options: StreamerOptions;
+  private readonly onEvent: (e: StreamerEvent) => void;
+  /** Segments whose geometry the devices hold, oldest first: the first `timed` are transmitted. */
+  private sent: Segment[] = [];
+  private timed = 0;
+  private readonly wireIds = new Map<Segment, number>();
+  private nextWireId = 1;
+  private tickTimer: Timer | null = null;
+  private unsubscribe: (() => void) | null = null;
+  private running = false;
+  /** While set, the streamer sends no timing for this segment or after it. */
+  private holdAt: Segment | null = null;
+  private idleWaiters: Array<() => void> = [];
+
+  constructor(
+    queue: TrajectoryQueue,
+    scheduler: Scheduler,
+    devices: DeviceBinding[],
+    onEvent: (e: StreamerEvent) => void,
+    options: Partial<StreamerOptions> = {},
+  ) {
+    this.queue = queue;
+    this.scheduler = scheduler;
+    this.devices = devices.map((binding) => ({ binding, timedEnd: null, timedEndAuthor: NaN, needP0: true, pendingEvents: [] }));
+    this.onEvent = onEvent;
+    this.options = { ...DEFAULT_STREAMER, ...options };
+  }
+
+  /** µs of motion kept ahead: 2·RTT (the slowest device's recent worst) plus a margin. */
+  get lead_us(): number {
+    let rtt = 0;
+    for (const d of this.devices) rtt = Math.max(rtt, d.binding.session.clock.rttHigh || 0);
+    return Math.max(this.options.minLead_us, 2 * rtt + this.options.leadMargin_us);
+  }
+
+  /** µs from now to the start of a segment after rest: one RTT (the slowest device's worst) plus a margin. */
+  get startLead_us(): number {
+    let rtt = 0;
+    for (const d of this.devices) rtt = Math.max(rtt, d.binding.session.clock.rttHigh || 0);
+    return rtt + this.options.startMargin_us;
+  }
+
+  start(): void {
+    this.running = true;
+    this.unsubscribe = this.queue.subscribe((e) => this.onQueue(e));
+    this.schedulePump(0);
+  }
+
+  /** Stops sending anything more; devices finish their timed path and brake along their geometry. */
+  stop(): void {
+    this.running = false;
+    this.unsubscribe?.();
+    this.tickTimer?.cancel();
+    this.tickTimer = null;
+  }
+
+  /** Whether the machine has nothing left to run: no timed segment ahead and nothing to send. */
+  get idle(): boolean {
+    const now = this.scheduler.now();
+    const moving = this.queue.transmittedEnd_us > now;
+    const waiting = this.queue.untransmittedCount > 0 && this.holdAt !== this.queue.peekUntransmitted();
+    return !moving && !waiting;
+  }
+
+  /** Resolves once the machine is idle (or held and at rest). */
+  whenIdle(): Promise<void> {
+    if (this.idle) return Promise.resolve();
+    return new Promise((resolve) => this.idleWaiters.push(resolve));
+  }
+
+  /** Brings the machine to rest on the path as soon as its limits allow, and holds there. */
+  async pause(): Promise<void> {
+    this.holdAt = this.queue.brakeToRest();
+    this.schedulePump(0);
+    await this.whenIdle();
+  }
+
+  /** Continues after a pause. */
+  resume(): void {
+    this.holdAt = null;
+    this.schedulePump(0);
+  }
+
+  /** Stops on the path as soon as possible and drops everything after the stopping point. */
+  async cancel(): Promise<void> {
+    const after = this.queue.brakeToRest();
+    if (after) this.queue.cancelFrom(after.id);
+    else if (this.queue.transmittedEnd_us <= this.scheduler.now()) this.queue.cancelAll();
+    this.holdAt = null;
+    this.schedulePump(0);
+    await this.whenIdle();
+  }
+
+  // --- the pump ---
+
+  private schedulePump(delay_us: number): void {
+    if (!this.running) return;
+    const at = this.scheduler.now() + delay_us;
+    if (this.tickTimer) this.tickTimer.cancel();
+    this.tickTimer = this.scheduler.at(at, () => {
+      this.tickTimer = null;
+      this.pump();
+    });
+  }
+
+  private pump(): void {
+    if (!this.running) return;
+    const now = this.scheduler.now();
+    // Executed segments leave the devices' queues and the author's live queue.
+    while (this.timed > 0 && this.sent[0].endTime_us <= now) {
+      this.wireIds.delete(this.sent[0]);
+      this.sent.shift();
+      this.timed--;
+    }
+    this.queue.retireUntil(now);
+
+    const newlyTimed: Segment[] = [];
+    const horizon = now + this.lead_us;
+    for (;;) {
+      const next = this.queue.timeFront();
+      if (!next || next === this.holdAt) break;
+      const ahead = this.countAhead(now);
+      if (this.queue.transmittedEnd_us >= horizon && ahead >= 2) break;
+      const start = this.queue.nextStart_us(now + this.startLead_us);
+      // Lock long segments a slice at a time.
+      const reach = horizon + this.options.slice_us - start;
+      if (next.duration_s * 1e6 > reach + this.options.slice_us && reach > 0) {
+        const d = evaluateTiming(next.timing!, reach * 1e-6, { s: 0, v: 0, a: 0 }).s;
+        if (d > MIN_SPLIT_MM && d < next.length - MIN_SPLIT_MM) {
+          this.queue.splitFront(d);
+          continue;
+        }
+      }
+      if (!this.fits(next)) {
+        this.conflict(next);
+        break;
+      }
+      const seg = this.queue.transmitNext(now + this.startLead_us) as Segment;
+      // `sent` is the timed segments, then the first untransmitted ones: keep it so.
+      if (this.sent.length === this.timed) this.sent.push(seg);
+      this.timed++;
+      newlyTimed.push(seg);
+    }
+    this.extendGeometry();
+    this.send(newlyTimed);
+
+    if (this.idle) {
+      const waiters = this.idleWaiters;
+      this.idleWaiters = [];
+      for (const w of waiters) w();
+      this.onEvent({ type: 'idle' });
+    }
+    // Keep pumping while anything runs or waits; queue events wake it otherwise.
+    if (this.queue.transmittedEnd_us > now || (this.queue.untransmittedCount > 0 && this.holdAt !== this.queue.peekUntransmitted())) {
+      this.schedulePump(this.options.tick_us);
+    }
+  }
+
+  /** Transmitted segments that have not ended yet. */
+  private countAhead(now: number): number {
+    let n = 0;
+    for (let i = this.timed - 1; i >= 0 && this.sent[i].endTime_us > now; i--) n++;
+    return n;
+  }
+
+  /** Braking distance (mm) from speed² v2 at the provisional segments' weakest deceleration. */
+  private stopDecel(): number {
+    let a = Infinity;
+    for (let i = this.timed; i < this.sent.length; i++) a = Math.min(a, this.sent[i].accel);
+    for (let i = 0; a === Infinity && i < 4; i++) {
+      const s = this.queue.untransmittedAt(i);
+      if (s) a = Math.min(a, s.accel);
+    }
+    if (a === Infinity && this.timed > 0) a = this.sent[this.timed - 1].accel;
+    return a === Infinity ? 1 : a;
+  }
+
+  /**
+   * Whether the devices can hold `next` with its timing and the geometry to brake
+   * from its exit speed, all within their queues.
+   */
+  private fits(next: Segment): boolean {
+    const a = Math.min(this.stopDecel(), next.accel);
+    let need = next.exit2 / (2 * a);
+    let count = this.timed + 1; // what will be timed, including `next`
+    for (let i = 1; need > 0; i++) {
+      const s = this.queue.untransmittedAt(i);
+      if (!s) break;
+      need -= s.length;
+      count++;
+    }
+    const ended = this.sent.length > 0 ? this.sent.filter((s, i) => i < this.timed && s.endTime_us <= this.scheduler.now()).length : 0;
+    return this.devices.every((d) => count - ended <= d.binding.capacity);
+  }
+
+  /** Sends geometry up to the braking distance past the timed path (and for every timed segment). */
+  private extendGeometry(): void {
+    const v2 = this.queue.transmittedExit2;
+    const a = this.stopDecel();
+    let provisional = 0;
+    for (let i = this.timed; i < this.sent.length; i++) provisional += this.sent[i].length;
+    const want = v2 / (2 * a);
+    let i = this.sent.length - this.timed; // index among untransmitted
+    while (provisional < want || this.sent.length === this.timed) {
+      const s = this.queue.untransmittedAt(i);
+      if (!s || this.sent.length >= Math.min(...this.devices.map((d) => d.binding.capacity))) break;
+      this.sent.push(s);
+      provisional += s.length;
+      i++;
+      if (provisional >= want) break;
+    }
+  }
+
+  /** Writes the new geometry, timing and events to every device, in that order. */
+  private send(newlyTimed: Segment[]): void {
+    const fresh = this.sent.filter((s) => !this.wireIds.has(s));
+    const firstId = this.nextWireId;
+    for (const s of fresh) {
+      this.wireIds.set(s, this.nextWireId);
+      this.nextWireId = (this.nextWireId + 1) & 0xffff;
+    }
+    for (const d of this.devices) {
+      const session = d.binding.session;
+      if (session.state !== 'open') continue;
+      const messages: Message[] = [];
+      if (fresh.length > 0) {
+        messages.push(...geometryMessages(fresh, d.binding.positionSlots, firstId, d.needP0));
+        d.needP0 = false;
+      }
+      if (newlyTimed.length > 0) messages.push(...this.timingFor(d, newlyTimed));
+      for (const m of messages) this.post(d, m);
+      this.flushEvents(d);
+    }
+  }
+
+  private timingFor(d: DeviceState, segs: Segment[]): Message[] {
+    const clock = d.binding.session.clock.clock;
+    if (!clock) return [];
+    const out: Message[] = [];
+    // Runs of contiguous segments share TIMING batches; a start after rest begins a new run.
+    let run: Segment[] = [];
+    let runStart = false;
+    const flush = () => {
+      if (run.length === 0) return;
+      const messages = timingMessages(run, clock, this.wireIds.get(run[0]) as number, runStart, this.stopDecel(), d.timedEnd ?? undefined);
+      d.timedEnd = messages.end ?? d.timedEnd;
+      out.push(...messages);
+      run = [];
+    };
+    for (const seg of segs) {
+      // Contiguous in author time: it starts exactly where the device's timed path ends.
+      const contiguous = d.timedEnd !== null && seg.startTime_us === d.timedEndAuthor;
+      if (run.length === 0 || !contiguous) {
+        flush();
+        runStart = !contiguous;
+      }
+      run.push(seg);
+      d.timedEndAuthor = seg.endTime_us;
+      this.queueEvents(d, seg);
+    }
+    flush();
+    return out;
+  }
+
+  private queueEvents(d: DeviceState, seg: Segment): void {
+    if (d.binding.eventSlots.size === 0) return;
+    const clock = d.binding.session.clock.clock;
+    if (!clock) return;
+    const startDev = Math.round(clock.toDeviceExact(seg.startTime_us));
+    for (const track of this.queue.eventTracksOf(seg)) {
+      const slot = d.binding.eventSlots.get(track.channel);
+      if (slot === undefined) continue;
+      const entries = track.times.map((t, k) => ({
+        offset: Math.max(0, Math.round(clock.toDeviceExact(seg.startTime_us + t * 1e6)) - startDev),
+        value: track.values[k],
+      }));
+      // As many entries per frame as fit: header 7 bytes, each ≤ 5 + 4.
+      const perFrame = Math.floor((MAX_PAYLOAD - 7) / 9);
+      for (let i = 0; i < entries.length; i += perFrame) {
+        const chunk = entries.slice(i, i + perFrame);
+        d.pendingEvents.push({ type: 'EVENTS', segmentId: this.wireIds.get(seg) as number, slot, firstIndex: i, count: chunk.length, entries: chunk });
+      }
+    }
+  }
+
+  private flushEvents(d: DeviceState): void {
+    const session = d.binding.session;
+    while (d.pendingEvents.length > 0 && d.pendingEvents[0].count <= session.freeEvents) {
+      const m = d.pendingEvents.shift() as MessageOf<'EVENTS'>;
+      session.freeEvents -= m.count;
+      this.post(d, m);
+    }
+  }
+
+  private post(d: DeviceState, m: Message): void {
+    d.binding.session.send(m).then(
+      (r: SendResult) => {
+        if (!r.ok) this.onEvent({ type: 'refused', device: d.binding.name, reason: r.reason, detail: r.detail, message: m });
+        if (d.pendingEvents.length > 0) this.flushEvents(d);
+      },
+      () => {
+        // The session ended; the runtime hears of it from the session itself.
+      },
+    );
+  }
+
+  private onQueue(e: QueueEvent): void {
+    if (e.type === 'removed') {
+      // Provisional geometry the devices hold may have been edited away.
+      const first = this.sent.findIndex((s, i) => i >= this.timed && e.segments.includes(s));
+      if (first >= 0) {
+        const fromId = this.wireIds.get(this.sent[first]) as number;
+        for (const s of this.sent.slice(first)) this.wireIds.delete(s);
+        this.sent.length = first;
+        this.nextWireId = fromId;
+        for (const d of this.devices) if (d.binding.session.state === 'open') this.post(d, { type: 'REPLACE_TAIL', fromId });
+      }
+    }
+    if (e.type === 'added' || e.type === 'removed') this.schedulePump(0);
+  }
+
+  private conflict(next: Segment): void {
+    const capacity = Math.min(...this.devices.map((d) => d.binding.capacity));
+    this.onEvent({
+      type: 'conflict',
+      message:
+        `buffer conflict: segment ${next.id} (${next.length.toFixed(3)} mm at up to ${Math.sqrt(next.cruise2).toFixed(1)} mm/s) ` +
+        `needs more segments ahead than a device's queue of ${capacity} holds, to stay on time and still be able to brake. ` +
+        `The machine is brought to rest. Use longer segments, a lower speed, or bufferConflict: 'slow'.`,
+    });
+    this.holdAt = this.queue.brakeToRest() ?? this.holdAt;
+  }
+}
