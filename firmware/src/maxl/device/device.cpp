@@ -1,0 +1,107 @@
+// MAXL_Device: construction, the loop, readers, events and status.
+// The link and session are in device_link.cpp, message handling in
+// device_handlers.cpp.
+#include "maxl/device/device.h"
+
+#include "maxl/readers/reader.h"
+#include "maxl/time/wrap.h"
+#include "maxl/wire/protocol.h"
+
+using namespace maxl;
+
+MAXL_Device* MAXL_Device::instance_ = 0;
+
+MAXL_Device::MAXL_Device(const char* name)
+    : name_(name),
+      now_(0),
+      lastStatusAt_(0),
+      velocity_(0.0f),
+      acceleration_(0.0f),
+      txSeq_(0),
+      flags_(0),
+      lastState_(state::IDLE),
+      begun_(false),
+      velocityValid_(false),
+      accelerationValid_(false) {
+  instance_ = this;
+  for (uint8_t i = 0; i < MAXL_EVENT_SLOTS; i++) eventTracks_[i].active = false;
+}
+
+void MAXL_Device::begin() {
+  instance_ = this;
+  begun_ = true;
+  session_.end();
+  resetSession();
+  for (MAXL_Reader* r = MAXL_Reader::first(); r; r = r->next()) r->onBegin();
+  now_ = hal::micros();
+  lastStatusAt_ = now_;
+}
+
+// A new session (HELLO_REQUEST), or power-up: nothing queued, nothing
+// subscribed, flags cleared. The clock model is kept: it is about the clocks,
+// not the session.
+void MAXL_Device::resetSession() {
+  motion_.reset();
+  events_.clear();
+  for (uint8_t i = 0; i < MAXL_EVENT_SLOTS; i++) eventTracks_[i].active = false;
+  for (MAXL_Reader* r = MAXL_Reader::first(); r; r = r->next()) r->unbind();
+  flags_ = 0;
+  lastState_ = motion_.statusState();
+}
+
+void MAXL_Device::loop() {
+  if (!begun_) return;
+  pollLink();
+  now_ = hal::micros();
+  motion_.tick(now_);
+  velocityValid_ = accelerationValid_ = false;
+  for (MAXL_Reader* r = MAXL_Reader::first(); r; r = r->next())
+    if (r->subscribed()) r->onTick(*this);
+  fireEvents();
+  if (motion_.takeStarved()) flags_ |= status_flag::STARVED;
+  reportStatus();
+}
+
+float MAXL_Device::velocity() {
+  if (!velocityValid_) {
+    velocity_ = motion_.velocity(now_);
+    velocityValid_ = true;
+  }
+  return velocity_;
+}
+
+float MAXL_Device::acceleration() {
+  if (!accelerationValid_) {
+    acceleration_ = motion_.acceleration(now_);
+    accelerationValid_ = true;
+  }
+  return acceleration_;
+}
+
+void MAXL_Device::fireEvents() {
+  if (!events_.due(now_)) return;
+  EventEntry e;
+  while (events_.popDue(now_, e)) {
+    for (MAXL_Reader* r = MAXL_Reader::first(); r; r = r->next())
+      if (r->subscribed() && r->kind() == kind::EVENT && r->slot() == e.slot) r->onEventValue(e.value);
+  }
+}
+
+// STATUS on every state change, and every MAXL_STATUS_PERIOD_US while not idle.
+void MAXL_Device::reportStatus() {
+  if (!session_.active()) return;
+  uint8_t s = motion_.statusState();
+  if (s != lastState_) {
+    lastState_ = s;
+    sendStatus();
+  } else if (s != state::IDLE && timeDiff(now_, lastStatusAt_) >= (int32_t)MAXL_STATUS_PERIOD_US) {
+    sendStatus();
+  }
+}
+
+bool MAXL_Device::idle() const {
+  if (motion_.statusState() != state::IDLE || motion_.queue().timed() > 0 || events_.count() > 0) return false;
+  for (const MAXL_Reader* r = MAXL_Reader::first(); r; r = r->next())
+    if (r->subscribed() && r->kind() == kind::SENSOR) return false;
+  return true;
+}

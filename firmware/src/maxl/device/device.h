@@ -1,0 +1,140 @@
+// The device: one per board. It owns the link, the session, the segment and
+// event queues and the readers' bindings, and runs them from loop().
+//
+//   MAXL_Device maxl("motorOne");
+//   void setup() { maxl.begin(Serial); }
+//   void loop()  { maxl.loop(); }
+#ifndef MAXL_DEVICE_DEVICE_H
+#define MAXL_DEVICE_DEVICE_H
+
+#include <stdint.h>
+
+#include "maxl/config.h"
+#include "maxl/events/event_queue.h"
+#include "maxl/hal/hal.h"
+#include "maxl/motion/motion.h"
+#include "maxl/session/session.h"
+#include "maxl/time/clock_model.h"
+#include "maxl/wire/frame_receiver.h"
+#include "maxl/wire/frame_writer.h"
+
+class MAXL_Reader;
+
+class MAXL_Device {
+ public:
+  explicit MAXL_Device(const char* name);
+
+  // Starts the link on `port` (Serial, ...) at `baud` and the runtime.
+  template <class Port>
+  void begin(Port& port, uint32_t baud = MAXL_DEFAULT_BAUD) {
+    port.begin(baud);
+    maxl::hal::attach(port);
+    begin();
+  }
+  // Starts the runtime on a link that is already up (host tests, wasm).
+  void begin();
+  // Reads the link, runs the trajectory, calls the readers. Call it as often
+  // as possible: every position reader is evaluated once per call.
+  void loop();
+
+  const char* name() const { return name_; }
+
+  // ---- clocks
+  // Device time of the current loop() (µs, the u32 micros() counter).
+  uint32_t now() const { return now_; }
+  // The author's ("machine") time now and at a device time, from CLOCK; until
+  // a CLOCK arrives, the device time itself (see clockKnown()).
+  uint32_t machineTime() const { return clock_.authorTime(maxl::hal::micros()); }
+  uint32_t machineTimeAt(uint32_t deviceTime) const { return clock_.authorTime(deviceTime); }
+  bool clockKnown() const { return clock_.known(); }
+
+  // ---- state
+  uint8_t state() const { return motion_.statusState(); }  // STATUS.state
+  uint8_t statusFlags() const { return flags_; }
+  // Nothing is due before new input arrives: no timing, no braking, no
+  // pending event, no subscribed sensor. The simulator calls loop() rarely then.
+  bool idle() const;
+
+  // ---- for readers
+  bool positionKnown(uint8_t slot) const { return slot < motion_.knownSlots(); }
+  int32_t positionUnits(uint8_t slot) const { return motion_.position(slot); }
+  float velocity();      // path speed at now(), mm/s
+  float acceleration();  // path acceleration at now(), mm/s²
+  void sendSamples(uint8_t reader, uint16_t sampleSeq, uint8_t count, uint32_t t0, const uint8_t* bytes,
+                   uint8_t length);
+
+  static MAXL_Device* instance() { return instance_; }
+  const maxl::Motion& motion() const { return motion_; }
+
+ private:
+  struct Answer {
+    uint8_t reason;  // 0: ack
+    uint16_t detail;
+  };
+  static Answer ack() {
+    Answer a = {0, 0};
+    return a;
+  }
+  static Answer nack(uint8_t reason, uint16_t detail) {
+    Answer a = {reason, detail};
+    return a;
+  }
+  struct EventTrack {  // EVENTS continuation state of one event slot
+    bool active;
+    uint16_t segmentId;
+    uint16_t next;        // entries received for that segment
+    uint32_t lastOffset;  // offset of the last one
+  };
+
+  // link (device_link.cpp)
+  void pollLink();
+  void onPacket();
+  void onFrameError(maxl::CodecError error);
+  void startSession(uint8_t seq, uint8_t protocol);
+  void sendAnswer(uint8_t seq, uint8_t reason, uint16_t detail);
+  void sendHello();
+  void sendReader(uint8_t index);
+  void sendStatus();
+  maxl::ByteWriter& beginFrame(uint8_t type);
+  void sendFrame();
+
+  // handlers (device_handlers.cpp)
+  Answer handle(uint8_t type, const uint8_t* payload, uint8_t length);
+  Answer onPing(const uint8_t* p, uint8_t n);
+  Answer onClock(const uint8_t* p, uint8_t n);
+  Answer onSubscribe(const uint8_t* p, uint8_t n);
+  Answer onGeometry(const uint8_t* p, uint8_t n);
+  Answer onTiming(const uint8_t* p, uint8_t n);
+  Answer onEvents(const uint8_t* p, uint8_t n);
+  Answer onReplaceTail(const uint8_t* p, uint8_t n);
+  Answer onHalt(const uint8_t* p, uint8_t n);
+  void forgetEventTracksFrom(uint16_t segmentId);
+
+  // runtime (device.cpp)
+  void resetSession();
+  void fireEvents();
+  void reportStatus();
+
+  static MAXL_Device* instance_;
+
+  const char* name_;
+  maxl::FrameReceiver rx_;
+  maxl::FrameWriter tx_;
+  maxl::Session session_;
+  maxl::Motion motion_;
+  maxl::EventQueue events_;
+  maxl::ClockModel clock_;
+  EventTrack eventTracks_[MAXL_EVENT_SLOTS];
+  uint32_t now_;
+  uint32_t lastStatusAt_;
+  float velocity_;
+  float acceleration_;
+  uint8_t txSeq_;
+  uint8_t flags_;
+  uint8_t lastState_;
+  bool begun_;
+  bool velocityValid_;
+  bool accelerationValid_;
+};
+
+#endif

@@ -1,0 +1,44 @@
+// Controls of the host hardware layer, for the GoogleTest suite: a virtual
+// clock the test sets, a receive buffer the test fills, a transmit buffer it
+// reads, and a log of pin writes with the virtual time of each.
+#ifndef MAXL_HAL_HAL_HOST_H
+#define MAXL_HAL_HAL_HOST_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+namespace maxl {
+namespace host {
+
+const size_t RX_CAPACITY = 8192;
+const size_t TX_CAPACITY = 65536;
+const size_t PIN_LOG_CAPACITY = 1 << 20;
+
+struct PinWrite {
+  uint32_t time;
+  uint8_t pin;
+  uint8_t value;
+};
+
+void reset();                      // clock 0, buffers and log empty
+void setMicros(uint32_t t);
+uint32_t micros();
+void advanceMicros(uint32_t dt);
+
+size_t pushRx(const uint8_t* data, size_t length);  // bytes accepted
+size_t rxPending();
+
+const uint8_t* tx();                // bytes the device wrote since clearTx()
+size_t txLength();
+void clearTx();
+bool txOverflowed();
+
+const PinWrite* pinLog();
+size_t pinLogLength();
+bool pinLogOverflowed();
+void clearPinLog();
+
+}  // namespace host
+}  // namespace maxl
+
+#endif

@@ -1,0 +1,403 @@
+#include "maxl/motion/motion.h"
+
+#include <math.h>
+
+#include "maxl/motion/profile.h"
+#include "maxl/time/wrap.h"
+#include "maxl/wire/protocol.h"
+
+namespace maxl {
+
+namespace {
+inline int32_t signedCoefficient(int8_t sign, int32_t magnitude) {
+  return sign > 0 ? magnitude : sign < 0 ? -magnitude : 0;
+}
+inline int32_t wrapAdd(int32_t a, int32_t b) { return (int32_t)((uint32_t)a + (uint32_t)b); }
+// p1 - p0 as a float, without overflowing 32 bits.
+inline float deltaOf(int32_t p0, int32_t p1) { return (float)((int64_t)p1 - (int64_t)p0); }
+}  // namespace
+
+void Motion::reset() {
+  queue_.clear(0);
+  mode_ = IDLE;
+  activeSlots_ = 0;
+  knownSlots_ = 0;
+  phase_ = 0;
+  headStarted_ = false;
+  starved_ = false;
+  haltPending_ = false;
+  hasRetiredEnd_ = false;
+  floatValid_ = false;
+  brakeStops_ = false;
+  haltSegment_ = 0;
+  lastId_ = 0;
+  lastSigma_ = 0.0f;
+  haltAt_ = 0;
+  retiredEnd_ = 0;
+  chunkStart_ = phaseStart_ = phaseEnd_ = 0;
+  stopDecel_ = 0.0f;
+  length_ = 0.0f;
+  phaseSigma_ = phaseNu_ = phaseAcc_ = 0.0f;
+  brakeEndSigma_ = brakeExitSpeed_ = 0.0f;
+  for (uint8_t i = 0; i < MAXL_POSITION_SLOTS; i++) {
+    track_[i].P = track_[i].B = track_[i].C = 0;
+    pos_[i] = 0;
+    base_[i] = 0;
+  }
+}
+
+uint8_t Motion::statusState() const {
+  switch (mode_) {
+    case WAITING:
+    case RUNNING: return state::RUNNING;
+    case BRAKING: return state::BRAKING;
+    case STOPPED: return state::STOPPED;
+    case HALTED: return state::HALTED;
+    default: return state::IDLE;
+  }
+}
+
+void Motion::setBase(const int32_t* p0, uint8_t slots) {
+  for (uint8_t i = 0; i < slots; i++) {
+    base_[i] = p0[i];
+    if (!moving()) pos_[i] = p0[i];
+  }
+  knownSlots_ = slots;
+}
+
+bool Motion::timingEnd(uint32_t& end) const {
+  if (queue_.timed() > 0) {
+    end = queue_.at((uint8_t)(queue_.timed() - 1)).end();
+    return true;
+  }
+  end = retiredEnd_;
+  return hasRetiredEnd_;
+}
+
+// ------------------------------------------------------------------ tick
+
+void Motion::tick(uint32_t now) {
+  // Each pass either evaluates and returns, or crosses one boundary that is
+  // not after `now` (a phase, a segment, a brake piece); the queue is finite.
+  for (;;) {
+    switch (mode_) {
+      case IDLE:
+      case STOPPED:
+      case HALTED:
+        if (queue_.timed() == 0) return;
+        mode_ = WAITING;
+        break;
+      case WAITING: {
+        if (queue_.timed() == 0) {
+          mode_ = IDLE;
+          return;
+        }
+        uint32_t start = queue_.head().start;
+        if (timeBefore(now, start)) return;
+        activate(start);
+        break;
+      }
+      case RUNNING:
+        if (haltPending_ && haltSegment_ == queue_.headId() && timeBefore(haltAt_, phaseEnd_)) {
+          if (timeBefore(now, haltAt_)) {
+            evaluate(now);
+            return;
+          }
+          brakeFromHalt(haltAt_);
+          break;
+        }
+        if (timeBefore(now, phaseEnd_)) {
+          evaluate(now);
+          return;
+        }
+        crossPhase(phaseEnd_);
+        break;
+      case BRAKING:
+        if (timeBefore(now, phaseEnd_)) {
+          evaluate(now);
+          return;
+        }
+        finishBrakePiece(phaseEnd_);
+        break;
+    }
+  }
+}
+
+// The hot path: position of every active slot at `now`, inside the current
+// phase or brake piece.
+void Motion::evaluate(uint32_t now) {
+  uint32_t x = now - chunkStart_;
+  while (x >= 65536UL) {
+    for (uint8_t i = 0; i < activeSlots_; i++) track_[i].nextChunk();
+    chunkStart_ += 65536UL;
+    x -= 65536UL;
+  }
+  for (uint8_t i = 0; i < activeSlots_; i++) pos_[i] = track_[i].at((uint16_t)x);
+}
+
+// Moves every slot's chunk start to t (>= chunkStart_), keeping position and
+// velocity continuous.
+void Motion::moveChunkTo(uint32_t t) {
+  uint32_t x = t - chunkStart_;
+  while (x >= 65536UL) {
+    for (uint8_t i = 0; i < activeSlots_; i++) track_[i].nextChunk();
+    chunkStart_ += 65536UL;
+    x -= 65536UL;
+  }
+  if (x) {
+    for (uint8_t i = 0; i < activeSlots_; i++) track_[i].advance((uint16_t)x);
+    chunkStart_ = t;
+  }
+}
+
+void Motion::activate(uint32_t t) {
+  const Segment& s = queue_.head();
+  int8_t sign = s.phaseSign(0);
+  for (uint8_t i = 0; i < activeSlots_; i++) {
+    track_[i].P = base_[i];
+    track_[i].B = s.b0[i];
+    track_[i].C = signedCoefficient(sign, s.cmag[i]);
+  }
+  phase_ = 0;
+  chunkStart_ = phaseStart_ = t;
+  phaseEnd_ = t + s.durations[0];
+  length_ = s.length;
+  floatValid_ = false;
+  headStarted_ = true;
+  mode_ = RUNNING;
+}
+
+void Motion::crossPhase(uint32_t t) {
+  const Segment& s = queue_.head();
+  if (phase_ + 1 >= s.phaseCount) {
+    finishSegment(t);
+    return;
+  }
+  moveChunkTo(t);
+  phase_++;
+  int8_t sign = s.phaseSign(phase_);
+  for (uint8_t i = 0; i < activeSlots_; i++) track_[i].C = signedCoefficient(sign, s.cmag[i]);
+  phaseStart_ = t;
+  phaseEnd_ = t + s.durations[phase_];
+  floatValid_ = false;
+}
+
+// The head's timing is over at t: it ends exactly at its p1.
+void Motion::finishSegment(uint32_t t) {
+  const Segment& s = queue_.head();
+  for (uint8_t i = 0; i < activeSlots_; i++) pos_[i] = base_[i] = s.p1[i];
+  bool moreTiming = queue_.timed() > 1;
+  float exitSpeed = moreTiming ? 0.0f : s.length * exitNu(s);
+  retiredEnd_ = t;
+  hasRetiredEnd_ = true;
+  lastId_ = queue_.headId();
+  lastSigma_ = 1.0f;
+  queue_.popHead();
+  headStarted_ = false;
+  if (moreTiming) {
+    mode_ = WAITING;  // tick() starts the next one at its start (usually t)
+    return;
+  }
+  if (atRest(exitSpeed, stopDecel_)) {
+    mode_ = IDLE;
+    return;
+  }
+  // Timing ran out while moving (protocol §6): brake along the provisional
+  // geometry, or stop dead at the end of the path if there is none.
+  starved_ = true;
+  if (queue_.count() > 0)
+    beginBrake(t, exitSpeed, 0.0f, base_);
+  else
+    stopHere(lastId_, 1.0f);
+}
+
+// Starts braking at time t along the head segment, from `speed` mm/s at σ =
+// sigma0, with positions `from` (which may be base_ or pos_).
+//
+// Along the segment the path length braked so far is s(τ) = v·τ − D·τ²/2, so
+// slot i, which moves Δi/L units per mm, is at from_i + (Δi/L)·s(τ):
+//   B = (Δi/L)·v  and  C = −(Δi/L)·D/2, scaled as in fixed_point.h.
+void Motion::beginBrake(uint32_t t, float speed, float sigma0, const int32_t* from) {
+  const Segment& s = queue_.head();
+  headStarted_ = true;
+  queue_.markTimed(0);  // any timing it had is abandoned
+  if (from != pos_)
+    for (uint8_t i = 0; i < activeSlots_; i++) pos_[i] = from[i];
+  float length = s.length;
+  float decel = stopDecel_;
+  if (!(decel > 0.0f) || atRest(speed, decel)) {
+    stopHere(queue_.headId(), sigma0);
+    return;
+  }
+  BrakePiece piece = planBrake(speed, decel, (1.0f - sigma0) * length);
+  for (uint8_t i = 0; i < activeSlots_; i++) {
+    float perMm = deltaOf(base_[i], s.p1[i]) / length;
+    float b = perMm * speed * B_SCALE;
+    float c = -perMm * decel * 0.5f * C_SCALE;
+    if (!(fabsf(b) < FIXED_LIMIT) || !(fabsf(c) < FIXED_LIMIT)) {
+      // Geometry too steep for the fixed-point range: stop where we are.
+      stopHere(queue_.headId(), sigma0);
+      return;
+    }
+    track_[i].P = pos_[i];
+    track_[i].B = roundToInt(b);
+    track_[i].C = roundToInt(c);
+  }
+  brakeStops_ = piece.stops;
+  brakeEndSigma_ = piece.stops ? sigma0 + piece.distance / length : 1.0f;
+  if (brakeEndSigma_ > 1.0f) brakeEndSigma_ = 1.0f;
+  brakeExitSpeed_ = piece.exitSpeed;
+  chunkStart_ = phaseStart_ = t;
+  phaseEnd_ = t + piece.duration;
+  length_ = length;
+  phaseSigma_ = sigma0;
+  phaseNu_ = speed / length;
+  phaseAcc_ = -decel / length;
+  floatValid_ = true;
+  mode_ = BRAKING;
+}
+
+void Motion::finishBrakePiece(uint32_t t) {
+  const Segment& s = queue_.head();
+  if (brakeStops_) {
+    // At rest inside the segment, at σ = σ0 + v²/(2·D·L): the same point on
+    // every device, whatever its clock, so it is set from σ, not integrated.
+    for (uint8_t i = 0; i < activeSlots_; i++)
+      pos_[i] = wrapAdd(base_[i], roundToInt(deltaOf(base_[i], s.p1[i]) * brakeEndSigma_));
+    stopHere(queue_.headId(), brakeEndSigma_);
+    return;
+  }
+  for (uint8_t i = 0; i < activeSlots_; i++) pos_[i] = base_[i] = s.p1[i];
+  lastId_ = queue_.headId();
+  lastSigma_ = 1.0f;
+  queue_.popHead();
+  headStarted_ = false;
+  if (queue_.count() > 0)
+    beginBrake(t, brakeExitSpeed_, 0.0f, base_);
+  else
+    stopHere(lastId_, 1.0f);  // out of provisional geometry while still moving
+}
+
+// HALT mode 1 reached its time t inside the running head segment.
+void Motion::brakeFromHalt(uint32_t t) {
+  moveChunkTo(t);
+  for (uint8_t i = 0; i < activeSlots_; i++) pos_[i] = track_[i].P;
+  refreshFloatPhase();
+  float tau = (float)(t - phaseStart_) * 1e-6f;
+  float sigma = phaseSigma_ + tau * (phaseNu_ + 0.5f * phaseAcc_ * tau);
+  float speed = length_ * (phaseNu_ + phaseAcc_ * tau);
+  if (sigma > 1.0f) sigma = 1.0f;
+  if (speed < 0.0f) speed = 0.0f;
+  haltPending_ = false;
+  beginBrake(t, speed, sigma, pos_);
+}
+
+void Motion::stopHere(uint16_t segmentId, float sigma) {
+  mode_ = STOPPED;
+  lastId_ = segmentId;
+  lastSigma_ = sigma;
+  haltPending_ = false;
+}
+
+// ------------------------------------------------------------------ commands
+
+void Motion::haltNow(uint32_t now) {
+  uint16_t id;
+  float sigma;
+  where(now, id, sigma);
+  queue_.clear(queue_.nextId());
+  for (uint8_t i = 0; i < activeSlots_; i++) base_[i] = pos_[i];
+  mode_ = HALTED;
+  lastId_ = id;
+  lastSigma_ = sigma;
+  headStarted_ = false;
+  haltPending_ = false;
+  hasRetiredEnd_ = false;
+}
+
+bool Motion::haltBrakeAt(uint32_t now, uint32_t at) {
+  if (timeBefore(at, now)) {
+    // Too late for `at`: brake at once.
+    if (mode_ == RUNNING) {
+      brakeFromHalt(now);
+    } else if (mode_ == WAITING) {
+      queue_.markTimed(0);
+      stopHere(lastId_, lastSigma_);
+    } else {
+      queue_.markTimed(0);
+    }
+    return false;
+  }
+  // Keep the timing of segments that start by `at`; the one running at `at`
+  // (start <= at < end) brakes from there, the rest become provisional.
+  uint8_t keep = 0;
+  while (keep < queue_.timed() && !timeBefore(at, queue_.at(keep).start)) keep++;
+  queue_.markTimed(keep);
+  haltPending_ = false;
+  if (keep > 0) {
+    const Segment& s = queue_.at((uint8_t)(keep - 1));
+    if (timeBefore(at, s.end())) {
+      haltPending_ = true;
+      haltSegment_ = (uint16_t)(queue_.headId() + keep - 1);
+      haltAt_ = at;
+    }
+  }
+  return true;
+}
+
+void Motion::dropFrom(uint8_t index) {
+  queue_.truncate(index);
+  if (haltPending_ && (uint16_t)(haltSegment_ - queue_.headId()) >= index) haltPending_ = false;
+}
+
+// ------------------------------------------------------------------ floats on demand
+
+void Motion::refreshFloatPhase() {
+  if (floatValid_ || mode_ != RUNNING) return;
+  const Segment& s = queue_.head();
+  float acc;
+  sigmaAt(s, phaseStart_ - s.start, phaseSigma_, phaseNu_, acc);
+  phaseAcc_ = (float)s.phaseSign(phase_) * s.alpha;
+  floatValid_ = true;
+}
+
+namespace {
+float clampedSeconds(uint32_t now, uint32_t start, uint32_t end) {
+  int32_t in = timeDiff(now, start);
+  int32_t len = timeDiff(end, start);
+  if (in < 0) in = 0;
+  if (in > len) in = len;
+  return (float)in * 1e-6f;
+}
+}  // namespace
+
+float Motion::velocity(uint32_t now) {
+  if (!moving()) return 0.0f;
+  refreshFloatPhase();
+  float tau = clampedSeconds(now, phaseStart_, phaseEnd_);
+  float v = length_ * (phaseNu_ + phaseAcc_ * tau);
+  return v > 0.0f ? v : 0.0f;
+}
+
+float Motion::acceleration(uint32_t now) {
+  (void)now;
+  if (!moving()) return 0.0f;
+  refreshFloatPhase();
+  return length_ * phaseAcc_;
+}
+
+void Motion::where(uint32_t now, uint16_t& segmentId, float& sigma) {
+  if (!moving()) {
+    segmentId = lastId_;
+    sigma = lastSigma_;
+    return;
+  }
+  refreshFloatPhase();
+  float tau = clampedSeconds(now, phaseStart_, phaseEnd_);
+  segmentId = queue_.headId();
+  sigma = phaseSigma_ + tau * (phaseNu_ + 0.5f * phaseAcc_ * tau);
+  if (sigma < 0.0f) sigma = 0.0f;
+  if (sigma > 1.0f) sigma = 1.0f;
+}
+
+}  // namespace maxl

@@ -1,0 +1,136 @@
+// Runs the segment queue against the device clock: which segment and phase
+// is current, every position slot's value at `now`, and the end-of-timing and
+// HALT braking of protocol §6.
+//
+//   IDLE      at rest, no timing queued
+//   WAITING   timing queued, its start still ahead (reported as running)
+//   RUNNING   inside a timed segment
+//   BRAKING   timing ran out while moving (or HALT mode 1): braking along the
+//             provisional geometry at stopDecel
+//   STOPPED   at rest after braking; needs HALT 0 and new geometry to go on
+//   HALTED    after HALT mode 0
+//
+// The hot path, tick() while RUNNING inside one phase, is integer only (see
+// fixed_point.h). Phase and segment changes are integer too. Floats are used
+// when timing arrives (device handlers), when braking starts, and lazily for
+// velocity/acceleration readers and STATUS.
+#ifndef MAXL_MOTION_MOTION_H
+#define MAXL_MOTION_MOTION_H
+
+#include <stdint.h>
+
+#include "maxl/config.h"
+#include "maxl/motion/fixed_point.h"
+#include "maxl/motion/segment_queue.h"
+
+namespace maxl {
+
+class Motion {
+ public:
+  enum Mode : uint8_t { IDLE, WAITING, RUNNING, BRAKING, STOPPED, HALTED };
+
+  Motion() { reset(); }
+
+  // New session: empty queue, positions unknown, no timing history.
+  void reset();
+
+  // Advances to `now` (wrap-safe) and evaluates every active slot.
+  void tick(uint32_t now);
+
+  // ---- state
+  Mode mode() const { return mode_; }
+  uint8_t statusState() const;  // protocol STATUS.state
+  bool moving() const { return mode_ == RUNNING || mode_ == BRAKING; }
+  bool headStarted() const { return headStarted_; }
+  // Positions at the last tick, units of 2^-16 mm, for slots < activeSlots().
+  int32_t position(uint8_t slot) const { return pos_[slot]; }
+  const int32_t* positions() const { return pos_; }
+  // Slots in use: one more than the highest subscribed position slot.
+  uint8_t activeSlots() const { return activeSlots_; }
+  void setActiveSlots(uint8_t n) { activeSlots_ = n; }
+  // How many slots have a known position (set by a GEOMETRY p0).
+  uint8_t knownSlots() const { return knownSlots_; }
+  // Path speed L·σ' (mm/s) and acceleration L·σ'' (mm/s²) at `now` (≥ the last tick).
+  float velocity(uint32_t now);
+  float acceleration(uint32_t now);
+  // Where the device is, for STATUS: segment id and σ along it.
+  void where(uint32_t now, uint16_t& segmentId, float& sigma);
+
+  // ---- queue, for the message handlers
+  SegmentQueue& queue() { return queue_; }
+  const SegmentQueue& queue() const { return queue_; }
+  // Starting position of the head segment (its p0), per slot.
+  int32_t base(uint8_t slot) const { return base_[slot]; }
+  // p0 of the segment at queue position i.
+  int32_t startOf(uint8_t i, uint8_t slot) const { return i == 0 ? base_[slot] : queue_.at((uint8_t)(i - 1)).p1[slot]; }
+  // Sets the queue's starting position (GEOMETRY p0 on an empty queue).
+  void setBase(const int32_t* p0, uint8_t slots);
+  // End of the last timing the device has or had (for TIMING without start).
+  bool timingEnd(uint32_t& end) const;
+
+  float stopDecel() const { return stopDecel_; }
+  void setStopDecel(float d) { stopDecel_ = d; }
+  // Called when the queue's timed prefix grew (the handler marked it).
+  void timingAdded() {}
+
+  // True when the current phase (or brake piece) began exactly at t.
+  bool phaseStartedAt(uint32_t t) const { return moving() && phaseStart_ == t; }
+
+  // ---- commands; call tick(now) first
+  void haltNow(uint32_t now);                  // HALT mode 0
+  bool haltBrakeAt(uint32_t now, uint32_t at);  // HALT mode 1; false if `at` was past (late)
+  void dropFrom(uint8_t index);                // REPLACE_TAIL, index checked by the caller
+
+  // Sticky: set when the timing ran out while moving (STATUS flag `starved`).
+  bool takeStarved() {
+    bool s = starved_;
+    starved_ = false;
+    return s;
+  }
+
+ private:
+  void activate(uint32_t t);
+  void crossPhase(uint32_t t);
+  void finishSegment(uint32_t t);
+  void beginBrake(uint32_t t, float speed, float sigma0, const int32_t* from);
+  void finishBrakePiece(uint32_t t);
+  void brakeFromHalt(uint32_t t);
+  void stopHere(uint16_t segmentId, float sigma);
+  void moveChunkTo(uint32_t t);
+  void evaluate(uint32_t now);
+  void refreshFloatPhase();
+
+  SegmentQueue queue_;
+  Mode mode_;
+  uint8_t activeSlots_;
+  uint8_t knownSlots_;
+  uint8_t phase_;          // current phase of the head (RUNNING)
+  bool headStarted_;       // the head has been run or braked along
+  bool starved_;
+  bool haltPending_;       // HALT mode 1 with `at` still ahead
+  bool hasRetiredEnd_;
+  bool floatValid_;        // phaseSigma_/phaseNu_ are those of the current phase
+  bool brakeStops_;
+  uint16_t haltSegment_;
+  uint16_t lastId_;        // where the device is when not moving
+  float lastSigma_;
+  uint32_t haltAt_;
+  uint32_t retiredEnd_;
+  uint32_t chunkStart_;
+  uint32_t phaseStart_;
+  uint32_t phaseEnd_;
+  float stopDecel_;
+  float length_;           // L of the segment being run
+  float phaseSigma_;       // σ at the phase start
+  float phaseNu_;          // σ' at the phase start, 1/s
+  float phaseAcc_;         // σ'' in the phase, 1/s²
+  float brakeEndSigma_;    // σ where the current brake piece ends
+  float brakeExitSpeed_;   // mm/s when it leaves the segment
+  FixedTrack track_[MAXL_POSITION_SLOTS];
+  int32_t pos_[MAXL_POSITION_SLOTS];
+  int32_t base_[MAXL_POSITION_SLOTS];
+};
+
+}  // namespace maxl
+
+#endif

@@ -1,0 +1,201 @@
+// SUBSCRIBE, GEOMETRY and TIMING acceptance rules (protocol §4).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "support/harness.h"
+
+using namespace maxl;
+using namespace maxltest;
+
+namespace {
+void position(float, float) {}
+void rate(float) {}
+const std::vector<int32_t> ORIGIN1 = {0};
+
+msg::TimingSegment cruise(uint32_t us) {
+  msg::TimingSegment t{};
+  t.shape = phase::CRUISE;
+  t.phaseCount = 1;
+  t.durations[0] = us;
+  t.alpha = 0.0f;
+  return t;
+}
+}  // namespace
+
+TEST(Subscribe, Rules) {
+  MAXL_TrackPositionLinear x("x", position);
+  MAXL_TrackVelocity v("v", rate);
+  Harness h;
+  h.open({});
+  EXPECT_EQ(h.exchange(h.author.subscribe(2, kind::POSITION, 0)).reason, nack::BAD_SUBSCRIPTION);  // no reader 2
+  Answer wrongKind = h.exchange(h.author.subscribe(1, kind::POSITION, 0));
+  EXPECT_EQ(wrongKind.reason, nack::BAD_SUBSCRIPTION);
+  EXPECT_EQ(wrongKind.detail, 1);
+  EXPECT_EQ(h.exchange(h.author.subscribe(1, kind::VELOCITY, 1)).reason, nack::BAD_SUBSCRIPTION);  // slot must be 0
+  EXPECT_EQ(h.exchange(h.author.subscribe(0, kind::POSITION, MAXL_POSITION_SLOTS)).reason, nack::BAD_SUBSCRIPTION);
+  EXPECT_EQ(h.exchange(h.author.subscribe(0, kind::POSITION, 1)).reason, 0);
+  EXPECT_EQ(h.device->motion().activeSlots(), 2);  // P = highest slot + 1
+  EXPECT_EQ(h.exchange(h.author.subscribe(0, kind::POSITION, 0)).reason, 0);
+  EXPECT_EQ(h.device->motion().activeSlots(), 1);
+  // Not while segments are queued.
+  EXPECT_EQ(h.exchange(h.author.geometry(0, &ORIGIN1, {{1.0f, {65536}}}, 1)).reason, 0);
+  EXPECT_EQ(h.exchange(h.author.subscribe(1, kind::VELOCITY, 0)).reason, nack::BAD_SUBSCRIPTION);
+}
+
+TEST(Geometry, IdsAndP0) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  // The first GEOMETRY of a session needs p0.
+  Answer a = h.exchange(h.author.geometry(0, nullptr, {{1.0f, {65536}}}, 1));
+  EXPECT_EQ(a.reason, nack::MALFORMED);
+  // With p0, any first id.
+  a = h.exchange(h.author.geometry(40000, &ORIGIN1, {{1.0f, {65536}}, {1.0f, {131072}}}, 1));
+  EXPECT_EQ(a.reason, 0);
+  EXPECT_EQ(a.freeSegments, MAXL_SEGMENT_CAPACITY - 2);
+  // Then ids must follow.
+  a = h.exchange(h.author.geometry(40003, nullptr, {{1.0f, {0}}}, 1));
+  EXPECT_EQ(a.reason, nack::MALFORMED);
+  EXPECT_EQ(a.detail, 40002);
+  EXPECT_EQ(h.exchange(h.author.geometry(40002, nullptr, {{1.0f, {0}}}, 1)).reason, 0);
+  // Lengths must be positive and finite; the count at least one.
+  EXPECT_EQ(h.exchange(h.author.geometry(40003, nullptr, {{0.0f, {0}}}, 1)).reason, nack::MALFORMED);
+  EXPECT_EQ(h.exchange(h.author.geometry(40003, nullptr, {{-1.0f, {0}}}, 1)).reason, nack::MALFORMED);
+  EXPECT_EQ(h.exchange(h.author.geometry(40003, nullptr, {{INFINITY, {0}}}, 1)).reason, nack::MALFORMED);
+  EXPECT_EQ(h.exchange(h.author.geometry(40003, nullptr, {}, 1)).reason, nack::MALFORMED);
+  // The payload's size follows P (one slot subscribed): two values per segment is malformed.
+  EXPECT_EQ(h.exchange(h.author.geometry(40003, nullptr, {{1.0f, {0, 0}}}, 2)).reason, nack::MALFORMED);
+}
+
+TEST(Geometry, QueueFullAddsNothingAndSetsTheFlag) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  uint16_t id = 0;
+  EXPECT_EQ(h.exchange(h.author.geometry(id++, &ORIGIN1, {{1.0f, {0}}}, 1)).reason, 0);
+  while (id < MAXL_SEGMENT_CAPACITY - 1) EXPECT_EQ(h.exchange(h.author.geometry(id++, nullptr, {{1.0f, {0}}}, 1)).reason, 0);
+  Answer full = h.exchange(h.author.geometry(id, nullptr, {{1.0f, {0}}, {1.0f, {0}}}, 1));
+  EXPECT_EQ(full.reason, nack::QUEUE_FULL);
+  EXPECT_EQ(full.detail, 1);
+  EXPECT_EQ(h.device->motion().queue().count(), MAXL_SEGMENT_CAPACITY - 1);
+  EXPECT_TRUE(h.device->statusFlags() & status_flag::QUEUE_FULL);
+  EXPECT_EQ(h.exchange(h.author.geometry(id, nullptr, {{1.0f, {0}}}, 1)).reason, 0);
+  EXPECT_EQ(h.device->motion().queue().free(), 0);
+}
+
+TEST(Timing, MustGoToTheFirstUntimedQueuedSegments) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  EXPECT_EQ(h.exchange(h.author.geometry(5, &ORIGIN1, {{1.0f, {65536}}, {1.0f, {131072}}}, 1)).reason, 0);
+  uint32_t start = 10000;
+  Answer a = h.exchange(h.author.timing(6, 1000.0f, &start, {cruise(1000)}));
+  EXPECT_EQ(a.reason, nack::UNKNOWN_SEGMENT);
+  EXPECT_EQ(a.detail, 6);
+  a = h.exchange(h.author.timing(5, 1000.0f, &start, {cruise(1000), cruise(1000), cruise(1000)}));
+  EXPECT_EQ(a.reason, nack::UNKNOWN_SEGMENT);
+  EXPECT_EQ(a.detail, 7);  // the first id without geometry
+  EXPECT_EQ(h.exchange(h.author.timing(5, 1000.0f, &start, {cruise(1000)})).reason, 0);
+  EXPECT_EQ(h.device->motion().queue().timed(), 1);
+  // Contiguous: no start needed now.
+  EXPECT_EQ(h.exchange(h.author.timing(6, 1000.0f, nullptr, {cruise(1000)})).reason, 0);
+  EXPECT_EQ(h.device->motion().queue().at(1).start, 11000u);
+}
+
+TEST(Timing, MalformedProfilesAreRefusedWhole) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  EXPECT_EQ(h.exchange(h.author.geometry(0, &ORIGIN1, {{1.0f, {65536}}, {1.0f, {131072}}}, 1)).reason, 0);
+  uint32_t start = 10000;
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, nullptr, {cruise(1000)})).reason, nack::MALFORMED);  // no history
+  EXPECT_EQ(h.exchange(h.author.timing(0, 0.0f, &start, {cruise(1000)})).reason, nack::MALFORMED);      // stopDecel
+  EXPECT_EQ(h.exchange(h.author.timing(0, NAN, &start, {cruise(1000)})).reason, nack::MALFORMED);
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {cruise(0)})).reason, nack::MALFORMED);       // T = 0
+  msg::TimingSegment none{};
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {none})).reason, nack::MALFORMED);           // no phase
+  msg::TimingSegment negative = cruise(1000);
+  negative.alpha = -5.0f;
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {negative})).reason, nack::MALFORMED);
+  // A good first segment and a bad second one: nothing is applied.
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {cruise(1000), cruise(0)})).reason, nack::MALFORMED);
+  EXPECT_EQ(h.device->motion().queue().timed(), 0);
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {cruise(1000), cruise(1000)})).reason, 0);
+  EXPECT_EQ(h.device->motion().queue().timed(), 2);
+}
+
+TEST(Timing, TooFastForFixedPointIsMalformed) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  // 30 m in 10 µs.
+  EXPECT_EQ(h.exchange(h.author.geometry(0, &ORIGIN1, {{30000.0f, {30000 * 65536}}}, 1)).reason, 0);
+  uint32_t start = 10000;
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {cruise(10)})).reason, nack::MALFORMED);
+}
+
+TEST(Timing, LateSegmentIsRefusedAndNeverRun) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  h.at(50000);
+  EXPECT_EQ(h.exchange(h.author.geometry(0, &ORIGIN1, {{1.0f, {65536}}, {1.0f, {131072}}}, 1)).reason, 0);
+  uint32_t start = 49999;  // 1 µs in the past
+  Answer a = h.exchange(h.author.timing(0, 1000.0f, &start, {cruise(1000), cruise(1000)}));
+  EXPECT_EQ(a.reason, nack::LATE_SEGMENT);
+  EXPECT_EQ(a.detail, 0);
+  EXPECT_EQ(h.device->motion().queue().timed(), 0);
+  EXPECT_TRUE(h.device->statusFlags() & status_flag::LATE);
+  for (uint32_t t = 50000; t < 60000; t += 100) {
+    h.loopAt(t);
+    EXPECT_EQ(h.device->positionUnits(0), 0);  // never moves
+  }
+  EXPECT_EQ(h.device->state(), state::IDLE);
+}
+
+TEST(Timing, ASegmentBeingBrakedAlongIsLate) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  h.at(50000);
+  EXPECT_EQ(h.exchange(h.author.geometry(0, &ORIGIN1, {{1.0f, {65536}}, {1.0f, {131072}}, {1.0f, {196608}}}, 1)).reason, 0);
+  uint32_t start = 60000;
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {cruise(1000)})).reason, 0);
+  // Segment 1 contiguous with 0 (starts at 61000), segment 2 would start at
+  // 62000; the device is already at 61500.
+  h.at(61500);
+  Answer a = h.exchange(h.author.timing(1, 1000.0f, nullptr, {cruise(1000), cruise(1000)}));
+  EXPECT_EQ(a.reason, nack::LATE_SEGMENT);
+  EXPECT_EQ(a.detail, 1);  // segment 1 started at 61000 < 61500: late, and so is 2
+  EXPECT_EQ(h.device->motion().queue().timed(), 0);  // 0 has run and retired
+}
+
+TEST(Timing, KeepsEarlierSegmentsOfTheBatch) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  h.at(50000);
+  EXPECT_EQ(h.exchange(h.author.geometry(0, &ORIGIN1, {{1.0f, {65536}}, {1.0f, {131072}}}, 1)).reason, 0);
+  uint32_t start = 60000;
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {cruise(1000), cruise(1000)})).reason, 0);
+  EXPECT_EQ(h.device->motion().queue().timed(), 2);
+}
+
+TEST(Status, ReportsStateDepthAndSticksFlags) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  EXPECT_EQ(h.exchange(h.author.geometry(0, &ORIGIN1, {{1.0f, {65536}}, {1.0f, {131072}}}, 1)).reason, 0);
+  h.take();
+  h.send(h.author.statusRequest());
+  std::vector<Packet> p = h.take();
+  ASSERT_EQ(p.size(), 2u);
+  ASSERT_EQ(p[0].type, type::STATUS);  // the reply, then the ACK
+  msg::Status s;
+  ASSERT_TRUE(msg::parse(p[0].payload.data(), (uint8_t)p[0].payload.size(), s));
+  EXPECT_EQ(s.state, state::IDLE);
+  EXPECT_EQ(s.depth, 2);
+  EXPECT_EQ(s.flags, 0);
+  EXPECT_EQ(p[1].type, type::ACK);
+}

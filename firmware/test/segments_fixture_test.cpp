@@ -1,0 +1,120 @@
+// The cross-language segment fixture: frames from the author, received at
+// `receiveAt`, then the readers' values at each sample time compared with the
+// author's. fixtures/segments.json comes from the TS core (skipped until it
+// is there); fixtures/segments-selftest.json from an independent Python
+// reading of the spec (make_segment_fixture.py).
+//
+// Tolerances (firmware/README.md, "Accuracy"):
+//  - position: positionToleranceUnits(τ, Δ) of support/reference.cpp, τ the
+//    time into the running segment and Δ its travel on that slot;
+//  - velocity: 1e-4 of the speed + 1e-3 mm/s (float σ' and ν0);
+//  - acceleration: 1e-4 of it + 1e-2 mm/s², except on the µs a phase starts,
+//    where the author may report either side.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "support/harness.h"
+#include "support/hex.h"
+#include "support/reference.h"
+
+using nlohmann::json;
+using namespace maxl;
+using namespace maxltest;
+
+namespace {
+void ignorePosition(float, float) {}
+void ignoreValue(float) {}
+
+struct Readers {
+  std::vector<std::unique_ptr<MAXL_TrackPositionLinear>> positions;
+  std::vector<std::unique_ptr<MAXL_TrackVelocity>> velocities;
+  std::vector<std::unique_ptr<MAXL_TrackAcceleration>> accelerations;
+  std::vector<std::unique_ptr<MAXL_TrackEvent>> events;
+  std::vector<std::unique_ptr<MAXL_SensorWriter>> sensors;
+};
+
+// Reader objects must be destroyed (unlinked) before the next case builds its own.
+void buildReaders(const json& list, Readers& r, std::vector<std::string>& names) {
+  names.clear();
+  for (auto& spec : list) names.push_back(spec["name"].get<std::string>());
+  for (size_t i = 0; i < list.size(); i++) {
+    const char* name = names[i].c_str();
+    switch (list[i]["kind"].get<int>()) {
+      case kind::POSITION: r.positions.emplace_back(new MAXL_TrackPositionLinear(name, ignorePosition)); break;
+      case kind::VELOCITY: r.velocities.emplace_back(new MAXL_TrackVelocity(name, ignoreValue)); break;
+      case kind::ACCELERATION: r.accelerations.emplace_back(new MAXL_TrackAcceleration(name, ignoreValue)); break;
+      case kind::EVENT: r.events.emplace_back(new MAXL_TrackEvent(name, ignoreValue)); break;
+      default: r.sensors.emplace_back(new MAXL_SensorWriter(name, 1)); break;
+    }
+  }
+}
+
+void runFixture(const std::string& path, size_t& checked) {
+  std::ifstream in(path);
+  json file = json::parse(in);
+  checked = 0;
+  for (const json& c : file["cases"]) {
+    SCOPED_TRACE(path + ": " + c["name"].get<std::string>());
+    Readers readers;
+    std::vector<std::string> names;
+    // Readers register in declaration order, which must be the fixture's order.
+    buildReaders(c["readers"], readers, names);
+    ASSERT_EQ(MAXL_Reader::count(), c["readers"].size()) << "stray readers registered";
+    for (size_t i = 0; i < names.size(); i++) ASSERT_EQ(std::string(MAXL_Reader::at((uint8_t)i)->name()), names[i]);
+    Harness h;
+    h.at(c["receiveAt"].get<uint32_t>());
+    for (auto& f : c["frames"]) {
+      h.send(fromHex(f.get<std::string>()));
+      for (const Answer& a : h.answers()) ASSERT_EQ(a.reason, 0) << "frame " << f << " refused, reason " << (int)a.reason;
+    }
+    for (const json& s : c["samples"]) {
+      uint32_t t = s["t"].get<uint32_t>();
+      h.loopAt(t);
+      const Motion& m = h.device->motion();
+      // Where are we? For the tolerance: time into the running segment, its travel.
+      double tau = 0;
+      bool running = m.mode() == Motion::RUNNING;
+      if (running) tau = (double)(int32_t)(t - m.queue().at(0).start);
+      auto positions = s["positions"];
+      for (size_t slot = 0; slot < positions.size(); slot++) {
+        double delta = running ? std::fabs((double)m.queue().at(0).p1[slot] - m.base((uint8_t)slot)) : 0;
+        double tol = positionToleranceUnits(tau, delta) / 65536.0;
+        ASSERT_NEAR(h.device->positionUnits((uint8_t)slot) / 65536.0, positions[slot].get<double>(), tol)
+            << "t=" << t << " slot " << slot;
+      }
+      double v = s["velocity"].get<double>();
+      if (!readers.velocities.empty()) {
+        EXPECT_NEAR(readers.velocities[0]->rate(), v, 1e-4 * std::fabs(v) + 1e-3) << "t=" << t;
+      }
+      double a = s["acceleration"].get<double>();
+      if (!readers.accelerations.empty()) {
+        bool edge = running && m.phaseStartedAt(t);
+        if (!edge) {
+          EXPECT_NEAR(readers.accelerations[0]->acceleration(), a, 1e-4 * std::fabs(a) + 1e-2) << "t=" << t;
+        }
+      }
+      checked++;
+    }
+  }
+}
+}  // namespace
+
+TEST(SegmentsFixture, SelfTestFromPython) {
+  std::string path = MAXL_SEGMENTS_FIXTURE;
+  path.replace(path.rfind("segments.json"), 13, "segments-selftest.json");
+  size_t checked = 0;
+  runFixture(path, checked);
+  EXPECT_GT(checked, 1000u);
+}
+
+TEST(SegmentsFixture, FromTheTypeScriptCore) {
+  std::ifstream probe(MAXL_SEGMENTS_FIXTURE);
+  if (!probe.good()) GTEST_SKIP() << MAXL_SEGMENTS_FIXTURE << " is not there yet (generated by the TS core)";
+  size_t checked = 0;
+  runFixture(MAXL_SEGMENTS_FIXTURE, checked);
+  EXPECT_GT(checked, 0u);
+}
