@@ -21,3 +21,14 @@ export { TrajectoryQueue, type MoveReceipt, type QueueEvent, type QueueListener 
 export { Segment, type SegmentState } from './trajectory/segment.ts';
 export type { TrajectorySample } from './trajectory/tracks.ts';
 export { evaluateTiming, phasesOf, timingDuration, type Phase, type Timing } from './plan/phases.ts';
+
+// The distributed runtime and what an app sees of it.
+export type { Link } from './net/link.ts';
+export type { DeviceInfo, ReaderInfo, SessionOptions } from './net/session.ts';
+export type { DeviceReport, RuntimeEvent } from './net/runtime.ts';
+export type { StreamerOptions } from './net/streamer.ts';
+export type { Scheduler, Timer } from './time/scheduler.ts';
+export { VirtualScheduler } from './time/virtualScheduler.ts';
+export { RealScheduler } from './time/realScheduler.ts';
+export { SensorCapture } from './capture/sensorCapture.ts';
+export { captureToCsv } from './capture/csv.ts';

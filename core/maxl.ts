@@ -9,12 +9,28 @@ import { MaxlError } from './errors.ts';
 import type { Move, ValidatedMove } from './trajectory/moves.ts';
 import { TrajectoryQueue, type MoveReceipt } from './trajectory/queue.ts';
 import { TrajectoryHistory } from './trajectory/history.ts';
+import { Runtime, type DeviceReport, type RuntimeEvent } from './net/runtime.ts';
+import type { Link } from './net/link.ts';
+import type { DeviceInfo, SessionOptions } from './net/session.ts';
+import type { StreamerOptions } from './net/streamer.ts';
+import type { Scheduler } from './time/scheduler.ts';
+import { RealScheduler } from './time/realScheduler.ts';
+import type { SensorCapture } from './capture/sensorCapture.ts';
+import { captureToCsv } from './capture/csv.ts';
 import { restingSample, type TrajectorySample } from './trajectory/tracks.ts';
 import { actuatorPosition } from './trajectory/transforms.ts';
 
 export interface MaxlOptions {
   /** mm per motion axis where the machine starts. Default: all zeros. */
   initialPosition?: number[];
+  /** The devices' links (WebSerial ports, serialport, simulated links); begin() opens them. */
+  links?: Link[];
+  /** The author's clock. Default: the wall clock (RealScheduler); tests pass a VirtualScheduler. */
+  scheduler?: Scheduler;
+  session?: Partial<SessionOptions>;
+  streamer?: Partial<StreamerOptions>;
+  /** How long begin() syncs clocks before streaming (µs). Default 1 s. */
+  syncBeforeStart_us?: number;
   /** How many transmitted segments the as-planned history keeps for sampling the past. Default 100 000. */
   historyLimit?: number;
 }
@@ -38,6 +54,8 @@ export class Maxl {
     const c = this.config;
     this.history = new TrajectoryHistory(c.motionAxes.length, c.actuatorAxes.length, c.eventChannels.length, options.historyLimit ?? 100_000);
     this.queue = new TrajectoryQueue(this.config, start, (seg) => this.history.push(seg));
+    this.scheduler = options.scheduler ?? new RealScheduler();
+    this.runtimeOptions = options;
   }
 
   /** Where the next move will start: after the moves waiting for room, or at the queue's tail. */
@@ -83,6 +101,100 @@ export class Maxl {
   /** Refuses further moves. */
   close(): void {
     this.closed = true;
+  }
+
+  // --- the distributed runtime ---
+
+  readonly scheduler: Scheduler;
+  private runtime: Runtime | null = null;
+  private readonly runtimeOptions: MaxlOptions;
+
+  /**
+   * Opens a session with every device on `links`, checks the subscriptions against
+   * their readers, subscribes them, syncs clocks, and starts streaming the queue.
+   */
+  async begin(): Promise<DeviceInfo[]> {
+    if (this.runtime) throw new MaxlError('NOT_STARTED', 'begin() was already called');
+    const o = this.runtimeOptions;
+    this.runtime = new Runtime(this, {
+      links: o.links ?? [],
+      scheduler: this.scheduler,
+      session: o.session,
+      streamer: o.streamer,
+      syncBeforeStart_us: o.syncBeforeStart_us,
+    });
+    for (const l of this.pendingListeners) this.runtime.on(l);
+    return this.runtime.begin();
+  }
+
+  /** Listens to devices, errors, stops and samples. */
+  on(listener: (e: RuntimeEvent) => void): () => void {
+    if (this.runtime) return this.runtime.on(listener);
+    this.pendingListeners.push(listener);
+    return () => {
+      this.pendingListeners = this.pendingListeners.filter((l) => l !== listener);
+    };
+  }
+  private pendingListeners: Array<(e: RuntimeEvent) => void> = [];
+
+  private started(): Runtime {
+    if (!this.runtime) throw new MaxlError('NOT_STARTED', 'call begin() first');
+    return this.runtime;
+  }
+
+  devices(): DeviceReport[] {
+    return this.runtime?.devices() ?? [];
+  }
+
+  /** Brings the machine to rest on the path as fast as its limits allow, and holds. */
+  pause(): Promise<void> {
+    return this.started().pause();
+  }
+
+  resume(): void {
+    this.started().resume();
+  }
+
+  /** Stops on the path as fast as the limits allow, and drops every move after the stop. */
+  cancel(): Promise<void> {
+    return this.started().cancel();
+  }
+
+  /** Emergency stop: every device stops where it is, now; everything queued is dropped. */
+  halt(): Promise<void> {
+    return this.started().halt();
+  }
+
+  /** Resolves when everything queued has run. */
+  whenIdle(): Promise<void> {
+    return this.started().whenIdle();
+  }
+
+  async end(): Promise<void> {
+    await this.runtime?.end();
+  }
+
+  /** The machine now, by the author's clock: every track, and the worst clock-sync error over the devices. */
+  estimate(): TrajectorySample & { time_us: number; syncError_us: number } {
+    const time_us = this.scheduler.now();
+    return { ...this.sample(time_us), time_us, syncError_us: this.runtime?.syncError_us ?? NaN };
+  }
+
+  /** Sensor captures so far, by "device/reader". */
+  get captures(): ReadonlyMap<string, SensorCapture> {
+    return this.runtime?.captures ?? new Map();
+  }
+
+  /** A capture as CSV, each sample joined with the planned position, velocity and acceleration at its time. */
+  captureCsv(key: string, channelNames?: string[]): string {
+    const capture = this.captures.get(key);
+    if (!capture) throw new MaxlError('CONFIG_INVALID', `no capture "${key}" (captures: ${[...this.captures.keys()].join(', ') || 'none'})`, 'capture');
+    return captureToCsv(capture, { sample: (t) => this.sample(t), motionAxes: this.config.motionAxes, channelNames });
+  }
+
+  /** µs of motion the streamer keeps ahead of the machine (2·RTT plus a margin). */
+  get lead_us(): number {
+    return this.runtime?.lead_us ?? NaN;
   }
 
   /**

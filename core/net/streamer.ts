@@ -183,6 +183,11 @@ export class Streamer {
     await this.whenIdle();
   }
 
+  /** The segment a device numbers `wireId`, among those the devices hold. */
+  segmentForWireId(wireId: number): Segment | undefined {
+    return this.sent.find((s) => this.wireIds.get(s) === wireId);
+  }
+
   // --- the pump ---
 
   private schedulePump(delay_us: number): void {
