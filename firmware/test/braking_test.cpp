@@ -129,10 +129,14 @@ TEST(Braking, TimingInTimeAvoidsBraking) {
   EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {cruise(100000)})).reason, 0);
   h.at(90000);
   EXPECT_EQ(h.exchange(h.author.timing(1, 1000.0f, nullptr, {cruise(100000)})).reason, 0);
-  for (uint32_t t = 90000; t < 220000; t += 1000) {
+  for (uint32_t t = 90000; t < 201000; t += 1000) {
     h.loopAt(t);
     double expected = std::min(20.0, std::max(0.0, (t - 1000) * 1e-4));
     EXPECT_NEAR(h.device->positionUnits(0), mm(expected), 8) << t;
   }
   EXPECT_FALSE(h.device->statusFlags() & status_flag::STARVED);
+  // Without more timing, the end of segment 1 (at speed, nothing after) starves.
+  h.loopAt(202000);
+  EXPECT_TRUE(h.device->statusFlags() & status_flag::STARVED);
+  EXPECT_EQ(h.device->state(), state::STOPPED);
 }

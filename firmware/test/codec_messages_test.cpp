@@ -68,7 +68,7 @@ TEST(Messages, GeometryLengthDependsOnPositionSlots) {
 }
 
 TEST(Messages, ShapeBits) {
-  EXPECT_EQ(msg::shapePhaseCount(0x00), 0);
+  EXPECT_EQ(msg::shapePhaseCount(0x00), -1);  // at least one phase
   EXPECT_EQ(msg::shapePhaseCount(0x01), 1);
   EXPECT_EQ(msg::shapePhaseCount(0x39), 3);  // accelerate, cruise, decelerate
   EXPECT_EQ(msg::shapePhaseCount(0x0E), 2);  // cruise, decelerate

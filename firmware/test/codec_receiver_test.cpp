@@ -110,7 +110,7 @@ TEST(FrameReceiver, CodePastTheEndIsBadCobs) {
 
 TEST(FrameReceiver, ShortPacketsAreTooShort) {
   FrameReceiver rx;
-  EXPECT_EQ(feed(rx, fromHex("0400010200")).lastError, CODEC_TOO_SHORT);  // 3 bytes
+  EXPECT_EQ(feed(rx, fromHex("0103010200")).lastError, CODEC_TOO_SHORT);  // 3 bytes: 00 01 02
   EXPECT_EQ(feed(rx, fromHex("0100")).lastError, CODEC_TOO_SHORT);        // 0 bytes
 }
 

@@ -151,7 +151,10 @@ TEST(Evaluation, SparseLoopCallsCrossManyBoundaries) {
     t += durationOf(p.timing);
   }
   EXPECT_EQ(h.exchange(h.author.geometry(0, &plan[0].p0, geometry, 1)).reason, 0);
-  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &plan[0].start, timing)).reason, 0);
+  // Three segments per TIMING frame (a frame holds 60 bytes of payload).
+  std::vector<msg::TimingSegment> firstHalf(timing.begin(), timing.begin() + 3), secondHalf(timing.begin() + 3, timing.end());
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &plan[0].start, firstHalf)).reason, 0);
+  EXPECT_EQ(h.exchange(h.author.timing(3, 1000.0f, nullptr, secondHalf)).reason, 0);
   checkPositions(h, plan, 0, t + 300000, 300007);
   EXPECT_EQ(h.device->positionUnits(0), mm(120));
 }

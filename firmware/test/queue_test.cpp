@@ -115,6 +115,9 @@ TEST(Timing, MalformedProfilesAreRefusedWhole) {
   EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {cruise(0)})).reason, nack::MALFORMED);       // T = 0
   msg::TimingSegment none{};
   EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {none})).reason, nack::MALFORMED);           // no phase
+  msg::TimingSegment gap = cruise(1000);
+  gap.shape = 0x08;  // cruise after NONE
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {gap})).reason, nack::MALFORMED);
   msg::TimingSegment negative = cruise(1000);
   negative.alpha = -5.0f;
   EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {negative})).reason, nack::MALFORMED);

@@ -6,7 +6,6 @@ namespace maxl {
 
 void FrameReceiver::reset() {
   len_ = 0;
-  packetLength_ = 4;
   encoded_ = 0;
   groupLeft_ = 0;
   zeroPending_ = false;

@@ -26,7 +26,7 @@ class FrameReceiver {
  public:
   enum Result : uint8_t { NOTHING = 0, PACKET, ERROR };
 
-  FrameReceiver() { reset(); }
+  FrameReceiver() : packetLength_(4), arrivedAt_(0), error_(CODEC_OK) { reset(); }
 
   // Feeds one byte. `now` is the device clock, kept as the frame's arrival
   // time when this byte is the delimiter (PONG.rxTime).

@@ -200,6 +200,7 @@ int8_t shapePhaseCount(uint8_t shape) {
   if (shape & 0xC0) return -1;
   int8_t n = 0;
   while (n < 3 && ((shape >> (2 * n)) & 3) != phase::NONE) n++;
+  if (n == 0) return -1;            // no phase at all
   if (shape >> (2 * n)) return -1;  // a phase after NONE
   return n;
 }

@@ -92,8 +92,8 @@ struct TimingSegment {
   // Phase k's kind (phase::ACCELERATE...), k < phaseCount.
   uint8_t phaseKind(uint8_t k) const { return (uint8_t)((shape >> (2 * k)) & 3); }
 };
-// Number of phases in `shape`, or -1 if its bits are not a valid list: a
-// phase after a NONE, or bits 6–7 set.
+// Number of phases in `shape` (1..3), or -1 if its bits are not a valid
+// list: no phase at all, a phase after a NONE, or bits 6–7 set.
 int8_t shapePhaseCount(uint8_t shape);
 
 class TimingView {
