@@ -80,13 +80,14 @@ describe('WasmDevice', () => {
     const b = await probeDevice('b', { hardware: hw('b'), loopPeriod_us: 20 });
     const runner = new DeviceRunner(s, [a.device, b.device]);
     runner.start();
-    const bytes = new TextEncoder().encode('s');
+    // 's' steps at the arrival; 'b' makes ten busy loops, each writing a pin: both devices loop inside the same chunks.
+    const bytes = new TextEncoder().encode('sb');
     for (let k = 0; k < 50; k++) {
       s.at(1000 + k * 317, () => runner.deliver(a.device, bytes));
       s.at(1100 + k * 211, () => runner.deliver(b.device, bytes));
     }
     await s.runUntil(100_000);
-    expect(order.length).toBe(300);
+    expect(order.length).toBeGreaterThan(300);
     for (let i = 1; i < order.length; i++) expect(order[i][1]).toBeGreaterThanOrEqual(order[i - 1][1]);
     expect(order.filter(([n]) => n === 'a').map(([, t]) => t)).toContain(1000 + 7 * 317);
   });

@@ -41,6 +41,22 @@ describe('LedExposure', () => {
     expect(red).toBeCloseTo(255 * 0.4, 2);
   });
 
+  it('deposits each sub-interval at its middle, so the light’s centroid is the time-average position', () => {
+    // Sub-intervals of up to 10 ms; the tool goes from x = 10 to 11 mm in 10 ms.
+    const leds = new LedExposure({ count: 1, origin_mm: [0, 0], pitch_mm: [0, 1] }, { ...image, maxStep_us: 10_000 });
+    leds.show(Uint8Array.of(100, 0, 0));
+    leds.expose(0, 10_000, (t) => [10 + t * 1e-4, 5]);
+    let sum = 0;
+    let moment = 0;
+    for (let i = 0; i < 100; i++) {
+      const r = leds.image[3 * (10 * 100 + i)];
+      sum += r;
+      moment += r * i * 0.5;
+    }
+    expect(sum).toBeCloseTo(1, 6);
+    expect(moment / sum).toBeCloseTo(10.5, 6);
+  });
+
   it('counts light that falls outside the image', () => {
     const leds = new LedExposure({ count: 1, origin_mm: [0, 0], pitch_mm: [1, 0] }, image);
     leds.show(Uint8Array.of(100, 0, 0));

@@ -5,7 +5,7 @@
 //
 // Each received byte is a command, answered on serial with 5 bytes: the
 // command byte, then micros() at that loop, u32 little-endian.
-//   'b'  stay busy for the next 10 loops (idle() is 0 meanwhile)
+//   'b'  stay busy for the next 10 loops (idle() is 0 meanwhile), writing pin 13 in each
 //   's'  one step: DIR (pin 5) high, STEP (pin 2) high then low
 //   'i'  I2C: write register 0 to 0x28, read 1 byte; answer it instead of micros' low byte
 //   'l'  show 2 LEDs on pin 6: (1,2,3) (4,5,6)
@@ -47,7 +47,10 @@ EXPORT(probe_setups) uint32_t probe_setups(void) { return setups; }
 
 EXPORT(maxl_loop) void loop(void) {
   loops++;
-  if (busyLoops > 0) busyLoops--;
+  if (busyLoops > 0) {
+    busyLoops--;
+    maxl_digital_write(13, loops & 1);  // a trace of each busy loop
+  }
   while (count > 0) {
     uint8_t c = ring[head];
     head = (head + 1) % sizeof ring;
