@@ -100,7 +100,7 @@ export async function createSimulatedMachine(
       seed: overrides.seed ?? spec.link?.seed ?? deriveSeed(seed, `link/${spec.name}`),
     });
     simLinks[spec.name] = link;
-    devices[spec.name] = await WasmDevice.instantiate(modules[i], {
+    const device = await WasmDevice.instantiate(modules[i], {
       name: spec.name,
       clock: options.clocks?.[spec.name] ?? spec.clock,
       hardware: plant.hardwareFor(spec.name),
@@ -109,6 +109,8 @@ export async function createSimulatedMachine(
       idleTick_us: options.idleTick_us ?? spec.idleTick_us,
       outputLogSize: options.outputLogSize,
     });
+    if (spec.firmwareName && spec.firmwareName !== spec.name) device.renameString(spec.firmwareName, spec.name);
+    devices[spec.name] = device;
   }
   const runner = new DeviceRunner(scheduler, Object.values(devices), options.chunk_us, options.onError);
   for (const [name, link] of Object.entries(simLinks)) link.device.onReceive((bytes) => runner.deliver(devices[name], bytes));

@@ -34,6 +34,8 @@ export const ExportNames = {
   idle: ['maxl_idle', 'maxl_is_idle'],
   rxBuffer: ['maxl_rx_buffer'],
   rxPush: ['maxl_rx_push'],
+  /** Optional: bytes still in the receive ring. Without it the host estimates (see WasmDevice). */
+  rxPending: ['maxl_rx_pending', 'maxl_rx_available'],
 } as const;
 
 /** Size of the buffer maxl_rx_buffer() points at (hal_wasm.cpp RX_STAGING). */
@@ -47,6 +49,7 @@ export interface FirmwareExports {
   idle: (() => number) | null;
   rxBuffer: () => number;
   rxPush: (length: number) => number;
+  rxPending: (() => number) | null;
 }
 
 export function resolveExports(instance: WebAssembly.Instance, label: string): FirmwareExports {
@@ -70,5 +73,6 @@ export function resolveExports(instance: WebAssembly.Instance, label: string): F
     idle: (find(ExportNames.idle) as (() => number) | undefined) ?? null,
     rxBuffer: required<() => number>('rxBuffer'),
     rxPush: required<(n: number) => number>('rxPush'),
+    rxPending: (find(ExportNames.rxPending) as (() => number) | undefined) ?? null,
   };
 }

@@ -72,6 +72,23 @@ describe('WasmDevice', () => {
     expect(runner.wakeups).toBeLessThanOrEqual(103);
   });
 
+  it('keeps looping at the loop period while received bytes may still wait in the ring (32 per loop)', async () => {
+    const s = new VirtualScheduler();
+    const { device } = await probeDevice('p', { loopPeriod_us: 25, idleTick_us: 10_000 });
+    const runner = new DeviceRunner(s, [device]);
+    runner.start();
+    s.at(5000, () => runner.deliver(device, Uint8Array.of(0x2e)));
+    await s.runUntil(5000);
+    // One byte, read by the arrival loop: idle again at once.
+    expect(device.busy).toBe(false);
+    expect(device.nextLoop_us).toBe(15_000);
+    s.at(20_000, () => runner.deliver(device, new Uint8Array(100).fill(0x2e)));
+    await s.runUntil(21_000);
+    // 100 bytes at up to 32 per loop: the arrival loop and 3 more at 25 µs, then the idle tick.
+    expect(device.time_us).toBe(20_075);
+    expect(device.nextLoop_us).toBe(30_075);
+  });
+
   it('runs every device in one time order, so a loop never runs after a later arrival elsewhere', async () => {
     const s = new VirtualScheduler();
     const order: Array<[string, number]> = [];
@@ -153,6 +170,19 @@ describe('WasmDevice', () => {
     const loops = device.counters.loops;
     await s.runUntil(200_000);
     expect(device.counters.loops).toBe(loops);
+  });
+
+  it('renames a string in the firmware, as if the sketch were edited and reflashed', async () => {
+    const s = new VirtualScheduler();
+    const { device, sent } = await probeDevice('p');
+    expect(() => device.renameString('probeDevice', 'muchTooLongName')).toThrow(SimError);
+    expect(() => device.renameString('nowhere', 'x')).toThrow(/0 times/);
+    device.renameString('probeDevice', 'probeB');
+    const runner = new DeviceRunner(s, [device]);
+    runner.start();
+    s.at(10, () => runner.deliver(device, new TextEncoder().encode('n')));
+    await s.runUntil(1000);
+    expect(new TextDecoder().decode(Uint8Array.from(sent[0].bytes))).toBe('nprobeB\0');
   });
 
   it('refuses modules that import what the ABI does not provide, or lack its exports', async () => {

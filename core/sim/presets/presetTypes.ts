@@ -21,6 +21,12 @@ export interface SimulatedDeviceSpec {
   name: string;
   /** Firmware example: firmware/examples/<example>, built to public/firmware/<example>.wasm. */
   example: string;
+  /**
+   * The device name compiled into the example, when this device runs it
+   * under another name (two boards flashed with the same Stepper sketch, its
+   * `MAXL_Device maxl("motorOne")` line edited to "motorA" and "motorB").
+   */
+  firmwareName?: string;
   /** The readers the example declares, in its READER order. */
   readers: PresetReader[];
   /** The board's crystal: offset at author time 0 and drift. */

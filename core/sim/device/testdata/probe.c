@@ -10,6 +10,7 @@
 //   'i'  I2C: write register 0 to 0x28, read 1 byte; answer it instead of micros' low byte
 //   'l'  show 2 LEDs on pin 6: (1,2,3) (4,5,6)
 //   'p'  servo pulse 1500 µs on pin 9
+//   'n'  answer the probe's name (a string in its data) instead: [n, the name's bytes, NUL]
 //   't'  trap (unreachable)
 //   anything else: echo only
 #include <stdint.h>
@@ -25,6 +26,7 @@ IMPORT(maxl_i2c_write) uint32_t maxl_i2c_write(uint32_t address, const uint8_t* 
 IMPORT(maxl_i2c_read) uint32_t maxl_i2c_read(uint32_t address, uint8_t* data, uint32_t length);
 IMPORT(maxl_servo_pulse) void maxl_servo_pulse(uint32_t pin, uint32_t pulseUs);
 
+static const char* volatile name = "probeDevice";
 static uint8_t staging[256];
 static uint8_t ring[2048];
 static uint32_t head, count;
@@ -75,6 +77,13 @@ EXPORT(maxl_loop) void loop(void) {
     }
     if (c == 'p') maxl_servo_pulse(9, 1500);
     if (c == 't') __builtin_trap();
+    if (c == 'n') {
+      uint32_t n = 0;
+      while (name[n]) n++;
+      maxl_serial_write(&c, 1);
+      maxl_serial_write((const uint8_t*)name, n + 1);
+      continue;
+    }
     maxl_serial_write(answer, 5);
   }
 }
