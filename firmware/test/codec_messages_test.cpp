@@ -3,7 +3,7 @@
 
 #include "maxl/wire/messages.h"
 
-using namespace maxl;
+using namespace maxl_fw;
 
 namespace {
 template <class M>

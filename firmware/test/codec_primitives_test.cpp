@@ -8,7 +8,7 @@
 #include "maxl/wire/crc16.h"
 #include "support/hex.h"
 
-using namespace maxl;
+using namespace maxl_fw;
 using maxltest::fromHex;
 using maxltest::toHex;
 

@@ -6,7 +6,7 @@
 #include "maxl/wire/frame_writer.h"
 #include "support/hex.h"
 
-using namespace maxl;
+using namespace maxl_fw;
 using maxltest::fromHex;
 
 namespace {
@@ -38,7 +38,7 @@ Outcome feed(FrameReceiver& rx, const std::vector<uint8_t>& bytes, uint32_t t0 =
 }
 
 std::vector<uint8_t> frameOf(uint8_t seq, uint8_t type, const std::vector<uint8_t>& payload) {
-  FrameWriter w;
+  OwnedFrameWriter w;
   ByteWriter& b = w.begin(seq, type);
   for (uint8_t x : payload) b.u8(x);
   EXPECT_TRUE(w.finish());
@@ -47,7 +47,7 @@ std::vector<uint8_t> frameOf(uint8_t seq, uint8_t type, const std::vector<uint8_
 }  // namespace
 
 TEST(FrameReceiver, DeliversAPacketAndItsArrivalTime) {
-  FrameReceiver rx;
+  OwnedFrameReceiver rx;
   auto f = frameOf(5, 0x02, {0x02, 0x01});
   Outcome o = feed(rx, f, 1000);
   EXPECT_EQ(o.packets, 1);
@@ -59,7 +59,7 @@ TEST(FrameReceiver, DeliversAPacketAndItsArrivalTime) {
 }
 
 TEST(FrameReceiver, PayloadsWithZerosAndTheLargestPacket) {
-  FrameReceiver rx;
+  OwnedFrameReceiver rx;
   std::vector<uint8_t> zeros(60, 0);
   Outcome a = feed(rx, frameOf(0, 0, zeros));
   EXPECT_EQ(a.packets, 1);
@@ -74,13 +74,13 @@ TEST(FrameReceiver, PayloadsWithZerosAndTheLargestPacket) {
 }
 
 TEST(FrameReceiver, EmptyFramesAreIgnored) {
-  FrameReceiver rx;
+  OwnedFrameReceiver rx;
   Outcome o = feed(rx, {0, 0, 0});
   EXPECT_EQ(o.packets + o.errors, 0);
 }
 
 TEST(FrameReceiver, TooLongThenRecovers) {
-  FrameReceiver rx;
+  OwnedFrameReceiver rx;
   std::vector<uint8_t> junk(66, 0x42);
   junk.push_back(0);
   auto good = frameOf(1, 2, {3});
@@ -92,7 +92,7 @@ TEST(FrameReceiver, TooLongThenRecovers) {
 }
 
 TEST(FrameReceiver, SixtyFiveEncodedBytesAreNotTooLong) {
-  FrameReceiver rx;
+  OwnedFrameReceiver rx;
   // 65 encoded bytes that are a valid COBS frame but carry a bad CRC.
   std::vector<uint8_t> f(1, 65);
   for (int i = 0; i < 64; i++) f.push_back(0x11);
@@ -102,20 +102,20 @@ TEST(FrameReceiver, SixtyFiveEncodedBytesAreNotTooLong) {
 }
 
 TEST(FrameReceiver, CodePastTheEndIsBadCobs) {
-  FrameReceiver rx;
+  OwnedFrameReceiver rx;
   Outcome o = feed(rx, fromHex("0511220000"));
   EXPECT_EQ(o.errors, 1);
   EXPECT_EQ(o.lastError, CODEC_BAD_COBS);
 }
 
 TEST(FrameReceiver, ShortPacketsAreTooShort) {
-  FrameReceiver rx;
+  OwnedFrameReceiver rx;
   EXPECT_EQ(feed(rx, fromHex("0103010200")).lastError, CODEC_TOO_SHORT);  // 3 bytes: 00 01 02
   EXPECT_EQ(feed(rx, fromHex("0100")).lastError, CODEC_TOO_SHORT);        // 0 bytes
 }
 
 TEST(FrameReceiver, CorruptionIsBadCrc) {
-  FrameReceiver rx;
+  OwnedFrameReceiver rx;
   auto f = frameOf(9, 4, {1, 2, 3});
   for (size_t i = 0; i + 1 < f.size(); i++) {
     for (uint8_t bit = 1; bit; bit <<= 1) {

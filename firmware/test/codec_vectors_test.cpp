@@ -15,7 +15,7 @@
 #include "support/hex.h"
 
 using nlohmann::json;
-using namespace maxl;
+using namespace maxl_fw;
 using maxltest::fromHex;
 using maxltest::toHex;
 
@@ -48,7 +48,7 @@ msg::DecodeContext contextOf(const json& v) {
 
 // Frame -> packet -> the vectors' JSON form. Returns the error name, or "" and fills `out`.
 std::string decodeFrame(const std::vector<uint8_t>& bytes, const msg::DecodeContext& ctx, json& out) {
-  FrameReceiver rx;
+  OwnedFrameReceiver rx;
   for (size_t i = 0; i < bytes.size(); i++) {
     FrameReceiver::Result r = rx.push(bytes[i], 0);
     if (r == FrameReceiver::ERROR) return codecErrorName(rx.error());
@@ -178,7 +178,7 @@ std::string decodeFrame(const std::vector<uint8_t>& bytes, const msg::DecodeCont
 
 // Packet JSON -> frame, through the library's writers.
 std::vector<uint8_t> encodePacket(const json& packet, const msg::DecodeContext& ctx) {
-  FrameWriter fw;
+  OwnedFrameWriter fw;
   const json& f = packet["fields"];
   uint8_t t = typeCodes().at(packet["type"].get<std::string>());
   ByteWriter& w = fw.begin(packet["seq"].get<uint8_t>(), t);

@@ -6,7 +6,7 @@
 
 #include "maxl/motion/fixed_point.h"
 
-using namespace maxl;
+using namespace maxl_fw;
 
 namespace {
 int64_t floorDiv65536(__int128 v) {

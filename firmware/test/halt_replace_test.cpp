@@ -5,7 +5,7 @@
 
 #include "support/harness.h"
 
-using namespace maxl;
+using namespace maxl_fw;
 using namespace maxltest;
 
 namespace {

@@ -7,7 +7,7 @@
 #include "support/author.h"
 #include "support/reference.h"
 
-using namespace maxl;
+using namespace maxl_fw;
 
 namespace {
 Segment segmentOf(const msg::TimingSegment& t) {

@@ -6,7 +6,7 @@
 #include "support/harness.h"
 #include "support/reference.h"
 
-using namespace maxl;
+using namespace maxl_fw;
 using namespace maxltest;
 
 namespace {

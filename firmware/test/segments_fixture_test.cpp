@@ -22,7 +22,7 @@
 #include "support/reference.h"
 
 using nlohmann::json;
-using namespace maxl;
+using namespace maxl_fw;
 using namespace maxltest;
 
 namespace {

@@ -3,7 +3,7 @@
 
 #include "support/harness.h"
 
-using namespace maxl;
+using namespace maxl_fw;
 using namespace maxltest;
 
 namespace {
@@ -155,7 +155,7 @@ TEST(Session, PongStampsTheDelimiterArrival) {
   Bytes ping = h.author.ping(0xBEEF);
   h.at(1000000);
   // All but the delimiter arrive at 1 000 000; the delimiter at 1 000 250.
-  maxl::host::pushRx(ping.data(), ping.size() - 1);
+  maxl_fw::host::pushRx(ping.data(), ping.size() - 1);
   h.loop();
   h.at(1000250);
   h.send(Bytes{0});

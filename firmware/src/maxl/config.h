@@ -24,7 +24,7 @@
 // Segments the device can hold: timed ones plus provisional geometry (protocol §6).
 #ifndef MAXL_SEGMENT_CAPACITY
 #if MAXL_SMALL_RAM
-#define MAXL_SEGMENT_CAPACITY 12
+#define MAXL_SEGMENT_CAPACITY 10
 #else
 #define MAXL_SEGMENT_CAPACITY 64
 #endif
@@ -33,7 +33,7 @@
 // Event-track changes the device can hold, over all event slots.
 #ifndef MAXL_EVENT_CAPACITY
 #if MAXL_SMALL_RAM
-#define MAXL_EVENT_CAPACITY 16
+#define MAXL_EVENT_CAPACITY 12
 #else
 #define MAXL_EVENT_CAPACITY 128
 #endif
@@ -52,7 +52,7 @@
 // Event slots: distinct event tracks one device can follow.
 #ifndef MAXL_EVENT_SLOTS
 #if MAXL_SMALL_RAM
-#define MAXL_EVENT_SLOTS 4
+#define MAXL_EVENT_SLOTS 2
 #else
 #define MAXL_EVENT_SLOTS 8
 #endif

@@ -8,54 +8,54 @@
 namespace maxltest {
 
 Harness::Harness(const char* name) {
-  maxl::host::reset();
+  maxl_fw::host::reset();
   device.reset(new MAXL_Device(name));
   device->begin();
 }
 
 void Harness::send(const Bytes& frame) {
-  size_t accepted = maxl::host::pushRx(frame.data(), frame.size());
+  size_t accepted = maxl_fw::host::pushRx(frame.data(), frame.size());
   EXPECT_EQ(accepted, frame.size());
   // loop() takes a bounded number of bytes per call: run until all are in.
   do loop();
-  while (maxl::host::rxPending() > 0);
+  while (maxl_fw::host::rxPending() > 0);
 }
 
 std::vector<Packet> decodeFrames(const uint8_t* bytes, size_t n) {
   std::vector<Packet> out;
-  maxl::FrameReceiver rx;
+  maxl_fw::OwnedFrameReceiver rx;
   for (size_t i = 0; i < n; i++) {
     auto r = rx.push(bytes[i], 0);
-    if (r == maxl::FrameReceiver::PACKET) {
+    if (r == maxl_fw::FrameReceiver::PACKET) {
       Packet p;
       p.seq = rx.seq();
       p.type = rx.type();
       p.payload.assign(rx.payload(), rx.payload() + rx.payloadLength());
       out.push_back(p);
-    } else if (r == maxl::FrameReceiver::ERROR) {
-      ADD_FAILURE() << "device sent a bad frame: " << maxl::codecErrorName(rx.error());
+    } else if (r == maxl_fw::FrameReceiver::ERROR) {
+      ADD_FAILURE() << "device sent a bad frame: " << maxl_fw::codecErrorName(rx.error());
     }
   }
   return out;
 }
 
 std::vector<Packet> Harness::take() {
-  std::vector<Packet> out = decodeFrames(maxl::host::tx(), maxl::host::txLength());
-  maxl::host::clearTx();
+  std::vector<Packet> out = decodeFrames(maxl_fw::host::tx(), maxl_fw::host::txLength());
+  maxl_fw::host::clearTx();
   return out;
 }
 
 Answer answerOf(const Packet& p) {
   Answer a{};
-  if (p.type == maxl::type::ACK) {
-    maxl::msg::Ack m;
-    EXPECT_TRUE(maxl::msg::parse(p.payload.data(), (uint8_t)p.payload.size(), m));
+  if (p.type == maxl_fw::type::ACK) {
+    maxl_fw::msg::Ack m;
+    EXPECT_TRUE(maxl_fw::msg::parse(p.payload.data(), (uint8_t)p.payload.size(), m));
     a.seq = m.ackSeq;
     a.freeSegments = m.freeSegments;
     a.freeEvents = m.freeEvents;
-  } else if (p.type == maxl::type::NACK) {
-    maxl::msg::Nack m;
-    EXPECT_TRUE(maxl::msg::parse(p.payload.data(), (uint8_t)p.payload.size(), m));
+  } else if (p.type == maxl_fw::type::NACK) {
+    maxl_fw::msg::Nack m;
+    EXPECT_TRUE(maxl_fw::msg::parse(p.payload.data(), (uint8_t)p.payload.size(), m));
     a.seq = m.seq;
     a.reason = m.reason;
     a.detail = m.detail;
@@ -66,7 +66,7 @@ Answer answerOf(const Packet& p) {
 std::vector<Answer> Harness::answers() {
   std::vector<Answer> out;
   for (const Packet& p : take())
-    if (p.type == maxl::type::ACK || p.type == maxl::type::NACK) out.push_back(answerOf(p));
+    if (p.type == maxl_fw::type::ACK || p.type == maxl_fw::type::NACK) out.push_back(answerOf(p));
   return out;
 }
 

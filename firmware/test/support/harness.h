@@ -30,8 +30,8 @@ class Harness {
   explicit Harness(const char* name = "dev");
 
   // Virtual device clock.
-  void at(uint32_t t) { maxl::host::setMicros(t); }
-  uint32_t now() const { return maxl::host::micros(); }
+  void at(uint32_t t) { maxl_fw::host::setMicros(t); }
+  uint32_t now() const { return maxl_fw::host::micros(); }
   // Bytes in, then one loop().
   void send(const Bytes& frame);
   void loop() { device->loop(); }

@@ -5,7 +5,7 @@
 
 namespace maxltest {
 
-RefState referenceSigma(const maxl::msg::TimingSegment& t, double tauUs) {
+RefState referenceSigma(const maxl_fw::msg::TimingSegment& t, double tauUs) {
   double T = 0, q = 0, rest = 0;
   for (int k = 0; k < t.phaseCount; k++) T += t.durations[k] * 1e-6;
   for (int k = t.phaseCount - 1; k >= 0; k--) {

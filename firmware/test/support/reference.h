@@ -14,7 +14,7 @@ struct RefState {
 };
 
 // σ, σ', σ'' at `tau` µs after the segment's start (clamped to [0, T]).
-RefState referenceSigma(const maxl::msg::TimingSegment& t, double tauUs);
+RefState referenceSigma(const maxl_fw::msg::TimingSegment& t, double tauUs);
 
 // The documented tolerance of a fixed-point position, in units of 2^-16 mm,
 // `tau` µs into a segment of `deltaUnits` travel (see firmware/README.md).

@@ -7,12 +7,15 @@
 #include "maxl/time/wrap.h"
 #include "maxl/wire/protocol.h"
 
-using namespace maxl;
+using namespace maxl_fw;
 
 MAXL_Device* MAXL_Device::instance_ = 0;
 
 MAXL_Device::MAXL_Device(const char* name)
     : name_(name),
+      frameBuffer_(),
+      rx_(frameBuffer_),
+      tx_(frameBuffer_),
       now_(0),
       lastStatusAt_(0),
       velocity_(0.0f),

@@ -28,7 +28,7 @@ class MAXL_Device {
   template <class Port>
   void begin(Port& port, uint32_t baud = MAXL_DEFAULT_BAUD) {
     port.begin(baud);
-    maxl::hal::attach(port);
+    maxl_fw::hal::attach(port);
     begin();
   }
   // Starts the runtime on a link that is already up (host tests, wasm).
@@ -44,7 +44,7 @@ class MAXL_Device {
   uint32_t now() const { return now_; }
   // The author's ("machine") time now and at a device time, from CLOCK; until
   // a CLOCK arrives, the device time itself (see clockKnown()).
-  uint32_t machineTime() const { return clock_.authorTime(maxl::hal::micros()); }
+  uint32_t machineTime() const { return clock_.authorTime(maxl_fw::hal::micros()); }
   uint32_t machineTimeAt(uint32_t deviceTime) const { return clock_.authorTime(deviceTime); }
   bool clockKnown() const { return clock_.known(); }
 
@@ -64,7 +64,7 @@ class MAXL_Device {
                    uint8_t length);
 
   static MAXL_Device* instance() { return instance_; }
-  const maxl::Motion& motion() const { return motion_; }
+  const maxl_fw::Motion& motion() const { return motion_; }
 
  private:
   struct Answer {
@@ -89,13 +89,13 @@ class MAXL_Device {
   // link (device_link.cpp)
   void pollLink();
   void onPacket();
-  void onFrameError(maxl::CodecError error);
+  void onFrameError(maxl_fw::CodecError error);
   void startSession(uint8_t seq, uint8_t protocol);
   void sendAnswer(uint8_t seq, uint8_t reason, uint16_t detail);
   void sendHello();
   void sendReader(uint8_t index);
   void sendStatus();
-  maxl::ByteWriter& beginFrame(uint8_t type);
+  maxl_fw::ByteWriter& beginFrame(uint8_t type);
   void sendFrame();
 
   // handlers (device_handlers.cpp)
@@ -118,12 +118,15 @@ class MAXL_Device {
   static MAXL_Device* instance_;
 
   const char* name_;
-  maxl::FrameReceiver rx_;
-  maxl::FrameWriter tx_;
-  maxl::Session session_;
-  maxl::Motion motion_;
-  maxl::EventQueue events_;
-  maxl::ClockModel clock_;
+  // One buffer for both directions: handlers read their packet completely
+  // before they write a reply (see frame_receiver.h).
+  uint8_t frameBuffer_[maxl_fw::FRAME_BUFFER_SIZE];
+  maxl_fw::FrameReceiver rx_;
+  maxl_fw::FrameWriter tx_;
+  maxl_fw::Session session_;
+  maxl_fw::Motion motion_;
+  maxl_fw::EventQueue events_;
+  maxl_fw::ClockModel clock_;
   EventTrack eventTracks_[MAXL_EVENT_SLOTS];
   uint32_t now_;
   uint32_t lastStatusAt_;

@@ -11,7 +11,7 @@
 #include "maxl/time/wrap.h"
 #include "maxl/wire/messages.h"
 
-using namespace maxl;
+using namespace maxl_fw;
 
 MAXL_Device::Answer MAXL_Device::handle(uint8_t t, const uint8_t* p, uint8_t n) {
   switch (t) {

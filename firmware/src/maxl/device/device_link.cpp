@@ -5,7 +5,7 @@
 #include "maxl/readers/reader.h"
 #include "maxl/wire/messages.h"
 
-using namespace maxl;
+using namespace maxl_fw;
 
 namespace {
 // Bytes taken from the link per loop(): enough to keep up with any baud rate

@@ -2,7 +2,7 @@
 
 #include "maxl/time/wrap.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 void EventQueue::push(uint32_t time, float value, uint16_t segmentId, uint8_t slot) {
   EventEntry& e = ring_[index(count_)];
@@ -81,4 +81,4 @@ void EventQueue::dropAfter(uint32_t t) {
   refreshNextDue();
 }
 
-}  // namespace maxl
+}  // namespace maxl_fw

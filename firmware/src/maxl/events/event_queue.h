@@ -13,7 +13,7 @@
 
 #include "maxl/config.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 struct EventEntry {
   uint32_t time;   // device µs: segment start + offset
@@ -63,6 +63,6 @@ class EventQueue {
   uint32_t nextDue_;
 };
 
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

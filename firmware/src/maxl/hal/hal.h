@@ -19,7 +19,7 @@
 class Stream;
 #endif
 
-namespace maxl {
+namespace maxl_fw {
 namespace hal {
 
 uint32_t micros();
@@ -55,6 +55,6 @@ void stepPulseWait();
 void directionSetupWait();
 
 }  // namespace hal
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

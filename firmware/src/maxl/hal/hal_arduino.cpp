@@ -6,7 +6,7 @@
 
 #include "maxl/hal/hal.h"
 
-namespace maxl {
+namespace maxl_fw {
 namespace hal {
 
 namespace {
@@ -61,6 +61,6 @@ void stepPulseWait() { delayMicroseconds(2); }
 void directionSetupWait() { delayMicroseconds(1); }
 
 }  // namespace hal
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

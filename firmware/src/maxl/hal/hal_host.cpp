@@ -6,7 +6,7 @@
 
 #include "maxl/hal/hal.h"
 
-namespace maxl {
+namespace maxl_fw {
 namespace host {
 
 namespace {
@@ -102,6 +102,6 @@ void stepPulseWait() {}
 void directionSetupWait() {}
 
 }  // namespace hal
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

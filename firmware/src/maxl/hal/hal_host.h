@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-namespace maxl {
+namespace maxl_fw {
 namespace host {
 
 const size_t RX_CAPACITY = 8192;
@@ -39,6 +39,6 @@ bool pinLogOverflowed();
 void clearPinLog();
 
 }  // namespace host
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

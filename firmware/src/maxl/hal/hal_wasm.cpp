@@ -31,7 +31,7 @@ __attribute__((export_name("maxl_rx_push"))) uint32_t maxl_rx_push(uint32_t leng
 }
 }
 
-namespace maxl {
+namespace maxl_fw {
 namespace hal {
 
 uint32_t micros() { return maxl_micros(); }
@@ -60,6 +60,6 @@ void stepPulseWait() {}
 void directionSetupWait() {}
 
 }  // namespace hal
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

@@ -33,7 +33,7 @@
 
 #include <stdint.h>
 
-namespace maxl {
+namespace maxl_fw {
 
 // floor(a·x / 2^16) for a signed 32-bit a and an unsigned 16-bit x. The
 // product fits in 48 bits, so the result fits in 32.
@@ -135,6 +135,6 @@ struct FixedTrack {
   }
 };
 
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

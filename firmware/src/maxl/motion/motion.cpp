@@ -6,7 +6,7 @@
 #include "maxl/time/wrap.h"
 #include "maxl/wire/protocol.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 namespace {
 inline int32_t signedCoefficient(int8_t sign, int32_t magnitude) {
@@ -400,4 +400,4 @@ void Motion::where(uint32_t now, uint16_t& segmentId, float& sigma) {
   if (sigma > 1.0f) sigma = 1.0f;
 }
 
-}  // namespace maxl
+}  // namespace maxl_fw

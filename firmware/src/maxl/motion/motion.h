@@ -23,7 +23,7 @@
 #include "maxl/motion/fixed_point.h"
 #include "maxl/motion/segment_queue.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 class Motion {
  public:
@@ -131,6 +131,6 @@ class Motion {
   int32_t base_[MAXL_POSITION_SLOTS];
 };
 
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

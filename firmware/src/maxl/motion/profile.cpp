@@ -2,7 +2,7 @@
 
 #include <math.h>
 
-namespace maxl {
+namespace maxl_fw {
 
 bool solveProfile(Segment& seg, float& nuPeak, float& nuEnd) {
   if (seg.phaseCount == 0) return false;
@@ -101,4 +101,4 @@ BrakePiece planBrake(float v, float decel, float remaining) {
   return b;
 }
 
-}  // namespace maxl
+}  // namespace maxl_fw

@@ -9,7 +9,7 @@
 
 #include "maxl/motion/segment.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 // Fixed-point scales of fixed_point.h, per µs: Q16.16 velocity and Q0.32 half
 // acceleration. 1 unit = 2^-16 mm.
@@ -71,6 +71,6 @@ BrakePiece planBrake(float v, float decel, float remaining);
 // one position unit (2^-16 mm): v² < 2·decel·2^-16.
 inline bool atRest(float v, float decel) { return v * v < 2.0f * decel * (1.0f / 65536.0f); }
 
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

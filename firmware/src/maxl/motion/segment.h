@@ -11,7 +11,7 @@
 
 #include "maxl/config.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 struct Segment {
   // geometry
@@ -37,6 +37,6 @@ struct Segment {
   }
 };
 
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

@@ -10,7 +10,7 @@
 #include "maxl/config.h"
 #include "maxl/motion/segment.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 class SegmentQueue {
  public:
@@ -77,6 +77,6 @@ class SegmentQueue {
   uint16_t headId_;
 };
 
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

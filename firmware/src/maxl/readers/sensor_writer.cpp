@@ -6,7 +6,7 @@
 #include "maxl/wire/bytes.h"
 
 MAXL_SensorWriter::MAXL_SensorWriter(const char* name, uint8_t channels)
-    : MAXL_Reader(name, maxl::kind::SENSOR,
+    : MAXL_Reader(name, maxl_fw::kind::SENSOR,
                   channels > MAXL_MAX_SENSOR_CHANNELS ? MAXL_MAX_SENSOR_CHANNELS : channels),
       used_(0),
       count_(0),
@@ -14,12 +14,12 @@ MAXL_SensorWriter::MAXL_SensorWriter(const char* name, uint8_t channels)
       t0_(0),
       last_(0) {}
 
-bool MAXL_SensorWriter::write(const float* values) { return writeAt(maxl::hal::micros(), values); }
+bool MAXL_SensorWriter::write(const float* values) { return writeAt(maxl_fw::hal::micros(), values); }
 
 bool MAXL_SensorWriter::writeAt(uint32_t deviceTime, const float* values) {
   if (!subscribed()) return false;
   uint32_t dt = count_ ? deviceTime - last_ : 0;
-  uint8_t size = (uint8_t)(maxl::ByteWriter::varintSize(dt) + 4 * channels());
+  uint8_t size = (uint8_t)(maxl_fw::ByteWriter::varintSize(dt) + 4 * channels());
   if (count_ && (used_ + size > SPACE || count_ == 255)) {
     flush();
     dt = 0;
@@ -27,7 +27,7 @@ bool MAXL_SensorWriter::writeAt(uint32_t deviceTime, const float* values) {
   }
   if (size > SPACE) return false;
   if (count_ == 0) t0_ = deviceTime;
-  maxl::ByteWriter w(bytes_ + used_, (uint8_t)(SPACE - used_));
+  maxl_fw::ByteWriter w(bytes_ + used_, (uint8_t)(SPACE - used_));
   w.varint(dt);
   for (uint8_t c = 0; c < channels(); c++) w.f32(values[c]);
   used_ = (uint8_t)(used_ + w.length());
@@ -46,7 +46,7 @@ void MAXL_SensorWriter::flush() {
 }
 
 void MAXL_SensorWriter::onTick(MAXL_Device& device) {
-  if (count_ && maxl::timeDiff(device.now(), t0_) >= (int32_t)MAXL_SAMPLE_MAX_AGE_US) flush();
+  if (count_ && maxl_fw::timeDiff(device.now(), t0_) >= (int32_t)MAXL_SAMPLE_MAX_AGE_US) flush();
 }
 
 void MAXL_SensorWriter::onUnsubscribe() {

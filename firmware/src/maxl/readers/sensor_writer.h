@@ -34,7 +34,7 @@ class MAXL_SensorWriter : public MAXL_Reader {
   void onUnsubscribe();
 
  private:
-  static const uint8_t SPACE = maxl::MAX_PAYLOAD - 8;  // payload minus the SAMPLES header
+  static const uint8_t SPACE = maxl_fw::MAX_PAYLOAD - 8;  // payload minus the SAMPLES header
   uint8_t bytes_[SPACE];
   uint8_t used_;
   uint8_t count_;

@@ -37,9 +37,9 @@ MAXL_StepGenerator::MAXL_StepGenerator(uint8_t stepPin, uint8_t dirPin, float st
 void MAXL_StepGenerator::begin() {
   if (begun_) return;
   begun_ = true;
-  maxl::hal::makeOutput(stepPin_, stepPinNumber_);
-  maxl::hal::makeOutput(dirPin_, dirPinNumber_);
-  maxl::hal::writePin(stepPin_, false);
+  maxl_fw::hal::makeOutput(stepPin_, stepPinNumber_);
+  maxl_fw::hal::makeOutput(dirPin_, dirPinNumber_);
+  maxl_fw::hal::writePin(stepPin_, false);
 }
 
 void MAXL_StepGenerator::refreshCeilings() {
@@ -71,12 +71,12 @@ void MAXL_StepGenerator::moveTo(int32_t units) {
 void MAXL_StepGenerator::step(int8_t direction) {
   if (!begun_) begin();
   if (direction != direction_) {
-    maxl::hal::writePin(dirPin_, (direction > 0) != invert_);
-    maxl::hal::directionSetupWait();
+    maxl_fw::hal::writePin(dirPin_, (direction > 0) != invert_);
+    maxl_fw::hal::directionSetupWait();
     direction_ = direction;
   }
-  maxl::hal::writePin(stepPin_, true);
-  maxl::hal::stepPulseWait();
-  maxl::hal::writePin(stepPin_, false);
+  maxl_fw::hal::writePin(stepPin_, true);
+  maxl_fw::hal::stepPulseWait();
+  maxl_fw::hal::writePin(stepPin_, false);
   steps_ += direction;
 }

@@ -36,8 +36,8 @@ class MAXL_StepGenerator {
   void refreshCeilings();
   void step(int8_t direction);
 
-  maxl::hal::OutputPin stepPin_;
-  maxl::hal::OutputPin dirPin_;
+  maxl_fw::hal::OutputPin stepPin_;
+  maxl_fw::hal::OutputPin dirPin_;
   uint8_t stepPinNumber_;
   uint8_t dirPinNumber_;
   bool invert_;

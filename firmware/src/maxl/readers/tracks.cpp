@@ -6,10 +6,10 @@
 // ---------------------------------------------------------------- position
 
 MAXL_TrackPositionLinear::MAXL_TrackPositionLinear(const char* name, Callback callback)
-    : MAXL_Reader(name, maxl::kind::POSITION, 0), callback_(callback), last_(0), known_(false) {}
+    : MAXL_Reader(name, maxl_fw::kind::POSITION, 0), callback_(callback), last_(0), known_(false) {}
 
 MAXL_TrackPositionLinear::MAXL_TrackPositionLinear(const char* name)
-    : MAXL_Reader(name, maxl::kind::POSITION, 0), callback_(0), last_(0), known_(false) {}
+    : MAXL_Reader(name, maxl_fw::kind::POSITION, 0), callback_(0), last_(0), known_(false) {}
 
 void MAXL_TrackPositionLinear::onTick(MAXL_Device& device) {
   if (!device.positionKnown(slot())) return;
@@ -34,7 +34,7 @@ void MAXL_TrackPositionLinear::onUnsubscribe() { known_ = false; }
 // ---------------------------------------------------------------- velocity
 
 MAXL_TrackVelocity::MAXL_TrackVelocity(const char* name, Callback callback)
-    : MAXL_Reader(name, maxl::kind::VELOCITY, 0), callback_(callback), last_(0.0f), reported_(false) {}
+    : MAXL_Reader(name, maxl_fw::kind::VELOCITY, 0), callback_(callback), last_(0.0f), reported_(false) {}
 
 void MAXL_TrackVelocity::onTick(MAXL_Device& device) {
   float v = device.velocity();
@@ -49,7 +49,7 @@ void MAXL_TrackVelocity::onUnsubscribe() { reported_ = false; }
 // ---------------------------------------------------------------- acceleration
 
 MAXL_TrackAcceleration::MAXL_TrackAcceleration(const char* name, Callback callback)
-    : MAXL_Reader(name, maxl::kind::ACCELERATION, 0), callback_(callback), last_(0.0f), reported_(false) {}
+    : MAXL_Reader(name, maxl_fw::kind::ACCELERATION, 0), callback_(callback), last_(0.0f), reported_(false) {}
 
 void MAXL_TrackAcceleration::onTick(MAXL_Device& device) {
   float a = device.acceleration();
@@ -64,7 +64,7 @@ void MAXL_TrackAcceleration::onUnsubscribe() { reported_ = false; }
 // ---------------------------------------------------------------- event
 
 MAXL_TrackEvent::MAXL_TrackEvent(const char* name, Callback callback)
-    : MAXL_Reader(name, maxl::kind::EVENT, 0), callback_(callback), last_(0.0f) {}
+    : MAXL_Reader(name, maxl_fw::kind::EVENT, 0), callback_(callback), last_(0.0f) {}
 
 void MAXL_TrackEvent::onEventValue(float value) {
   last_ = value;

@@ -17,7 +17,7 @@
 
 #include "maxl/wire/protocol.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 class Session {
  public:
@@ -73,6 +73,6 @@ class Session {
   uint8_t handled_;
 };
 
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

@@ -7,7 +7,7 @@
 
 #include <stdint.h>
 
-namespace maxl {
+namespace maxl_fw {
 
 class ClockModel {
  public:
@@ -36,6 +36,6 @@ class ClockModel {
   int32_t ratePpb_;
 };
 
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

@@ -6,12 +6,12 @@
 
 #include <stdint.h>
 
-namespace maxl {
+namespace maxl_fw {
 
 inline int32_t timeDiff(uint32_t a, uint32_t b) { return (int32_t)(a - b); }
 inline bool timeBefore(uint32_t a, uint32_t b) { return timeDiff(a, b) < 0; }
 inline bool timeReached(uint32_t now, uint32_t t) { return timeDiff(now, t) >= 0; }
 
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

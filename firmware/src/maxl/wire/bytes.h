@@ -11,7 +11,7 @@
 #include <stdint.h>
 #include <string.h>
 
-namespace maxl {
+namespace maxl_fw {
 
 class ByteReader {
  public:
@@ -166,6 +166,6 @@ class ByteWriter {
   bool failed_;
 };
 
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

@@ -1,6 +1,6 @@
 #include "maxl/wire/cobs.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 uint8_t cobsEncodeInPlace(uint8_t* buffer, uint8_t length) {
   uint8_t codePos = 0;  // where the current group's code byte goes
@@ -44,4 +44,4 @@ int16_t cobsDecode(const uint8_t* in, uint8_t length, uint8_t* out, uint8_t capa
   return o;
 }
 
-}  // namespace maxl
+}  // namespace maxl_fw

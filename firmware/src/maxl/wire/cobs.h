@@ -7,7 +7,7 @@
 
 #include <stdint.h>
 
-namespace maxl {
+namespace maxl_fw {
 
 // Encodes `length` bytes found at buffer[1 .. length] in place, into
 // buffer[0 .. result - 1]. The buffer must hold length + 1 bytes. Encoding in
@@ -22,6 +22,6 @@ uint8_t cobsEncodeInPlace(uint8_t* buffer, uint8_t length);
 // fit in `capacity`. `in` and `out` may be the same buffer.
 int16_t cobsDecode(const uint8_t* in, uint8_t length, uint8_t* out, uint8_t capacity);
 
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

@@ -1,6 +1,6 @@
 #include "maxl/wire/crc16.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 uint16_t crc16(const uint8_t* data, uint8_t length) {
   uint16_t crc = CRC16_INIT;
@@ -8,4 +8,4 @@ uint16_t crc16(const uint8_t* data, uint8_t length) {
   return crc;
 }
 
-}  // namespace maxl
+}  // namespace maxl_fw

@@ -5,7 +5,7 @@
 
 #include <stdint.h>
 
-namespace maxl {
+namespace maxl_fw {
 
 const uint16_t CRC16_INIT = 0xFFFF;
 
@@ -22,6 +22,6 @@ inline uint16_t crc16Update(uint16_t crc, uint8_t byte) {
 
 uint16_t crc16(const uint8_t* data, uint8_t length);
 
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

@@ -2,7 +2,7 @@
 
 #include "maxl/wire/crc16.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 void FrameReceiver::reset() {
   len_ = 0;
@@ -69,4 +69,4 @@ FrameReceiver::Result FrameReceiver::finish() {
   return PACKET;
 }
 
-}  // namespace maxl
+}  // namespace maxl_fw

@@ -13,6 +13,11 @@
 //   fewer than 4 packet bytes      TOO_SHORT
 //   CRC mismatch                   BAD_CRC
 // An empty frame (two delimiters in a row) is ignored.
+//
+// The packet is decoded into a buffer the caller owns (FRAME_BUFFER_SIZE
+// bytes), so that a device can send its replies from the same buffer once it
+// has read the packet: 66 bytes of RAM instead of 130 on a 2 KB board.
+// OwnedFrameReceiver brings its own buffer.
 #ifndef MAXL_WIRE_FRAME_RECEIVER_H
 #define MAXL_WIRE_FRAME_RECEIVER_H
 
@@ -20,13 +25,15 @@
 
 #include "maxl/wire/protocol.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 class FrameReceiver {
  public:
   enum Result : uint8_t { NOTHING = 0, PACKET, ERROR };
 
-  FrameReceiver() : packetLength_(4), arrivedAt_(0), error_(CODEC_OK) { reset(); }
+  explicit FrameReceiver(uint8_t* buffer) : buf_(buffer), packetLength_(4), arrivedAt_(0), error_(CODEC_OK) {
+    reset();
+  }
 
   // Feeds one byte. `now` is the device clock, kept as the frame's arrival
   // time when this byte is the delimiter (PONG.rxTime).
@@ -47,7 +54,7 @@ class FrameReceiver {
   Result finish();
   void store(uint8_t b);
 
-  uint8_t buf_[MAX_PACKET];
+  uint8_t* buf_;  // FRAME_BUFFER_SIZE bytes; the packet uses the first MAX_PACKET
   uint8_t len_;           // decoded bytes stored so far
   uint8_t packetLength_;  // length of the last complete packet (push() resets len_)
   uint8_t encoded_;    // encoded bytes seen in this frame
@@ -59,6 +66,14 @@ class FrameReceiver {
   CodecError error_;
 };
 
-}  // namespace maxl
+class OwnedFrameReceiver : public FrameReceiver {
+ public:
+  OwnedFrameReceiver() : FrameReceiver(own_) {}
+
+ private:
+  uint8_t own_[FRAME_BUFFER_SIZE];
+};
+
+}  // namespace maxl_fw
 
 #endif

@@ -3,7 +3,7 @@
 #include "maxl/wire/cobs.h"
 #include "maxl/wire/crc16.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 bool FrameWriter::finish() {
   if (writer_.failed()) {
@@ -21,4 +21,4 @@ bool FrameWriter::finish() {
   return true;
 }
 
-}  // namespace maxl
+}  // namespace maxl_fw

@@ -6,7 +6,8 @@
 //                      COBS-encodes in place into buf[0..], appends 0x00.
 //
 // The packet sits one byte to the right of the frame so that COBS can encode
-// in place (see cobs.h): no second buffer.
+// in place (see cobs.h): no second buffer. The buffer is the caller's
+// (FRAME_BUFFER_SIZE bytes; see frame_receiver.h); OwnedFrameWriter brings its own.
 #ifndef MAXL_WIRE_FRAME_WRITER_H
 #define MAXL_WIRE_FRAME_WRITER_H
 
@@ -15,11 +16,11 @@
 #include "maxl/wire/bytes.h"
 #include "maxl/wire/protocol.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 class FrameWriter {
  public:
-  FrameWriter() : writer_(buf_ + 3, MAX_PAYLOAD), frameLength_(0) {}
+  explicit FrameWriter(uint8_t* buffer) : buf_(buffer), writer_(buffer + 3, MAX_PAYLOAD), frameLength_(0) {}
 
   ByteWriter& begin(uint8_t seq, uint8_t type) {
     buf_[1] = seq;
@@ -37,11 +38,19 @@ class FrameWriter {
   uint8_t frameLength() const { return frameLength_; }
 
  private:
-  uint8_t buf_[1 + MAX_PACKET + 1];  // spare code byte + packet + delimiter
+  uint8_t* buf_;  // spare code byte + packet + delimiter: FRAME_BUFFER_SIZE bytes
   ByteWriter writer_;
   uint8_t frameLength_;
 };
 
-}  // namespace maxl
+class OwnedFrameWriter : public FrameWriter {
+ public:
+  OwnedFrameWriter() : FrameWriter(own_) {}
+
+ private:
+  uint8_t own_[FRAME_BUFFER_SIZE];
+};
+
+}  // namespace maxl_fw
 
 #endif

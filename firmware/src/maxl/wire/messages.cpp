@@ -1,6 +1,6 @@
 #include "maxl/wire/messages.h"
 
-namespace maxl {
+namespace maxl_fw {
 namespace msg {
 
 namespace {
@@ -361,4 +361,4 @@ CodecError checkPayload(uint8_t t, const uint8_t* p, uint8_t n, const DecodeCont
 }
 
 }  // namespace msg
-}  // namespace maxl
+}  // namespace maxl_fw

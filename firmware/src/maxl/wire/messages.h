@@ -18,7 +18,7 @@
 #include "maxl/wire/bytes.h"
 #include "maxl/wire/protocol.h"
 
-namespace maxl {
+namespace maxl_fw {
 namespace msg {
 
 // ---------------------------------------------------------------- author to device
@@ -233,6 +233,6 @@ struct DecodeContext {
 CodecError checkPayload(uint8_t type, const uint8_t* p, uint8_t n, const DecodeContext& context);
 
 }  // namespace msg
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif

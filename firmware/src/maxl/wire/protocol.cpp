@@ -1,6 +1,6 @@
 #include "maxl/wire/protocol.h"
 
-namespace maxl {
+namespace maxl_fw {
 
 const char* codecErrorName(CodecError e) {
   switch (e) {
@@ -15,4 +15,4 @@ const char* codecErrorName(CodecError e) {
   return "?";
 }
 
-}  // namespace maxl
+}  // namespace maxl_fw

@@ -5,7 +5,7 @@
 
 #include <stdint.h>
 
-namespace maxl {
+namespace maxl_fw {
 
 const uint8_t PROTOCOL_VERSION = 1;
 const uint32_t CLOCK_HZ = 1000000UL;
@@ -14,6 +14,9 @@ const uint32_t CLOCK_HZ = 1000000UL;
 const uint8_t MAX_PACKET = 64;          // seq + type + payload + crc
 const uint8_t MAX_PAYLOAD = 60;
 const uint8_t MAX_ENCODED = 65;         // COBS(packet), without the 0x00 delimiter
+// One buffer holds a received packet or a frame being sent (spare COBS code
+// byte + packet + delimiter); the device shares one between both directions.
+const uint8_t FRAME_BUFFER_SIZE = 1 + MAX_PACKET + 1;
 const uint8_t MAX_NAME = 31;
 const uint8_t DUPLICATE_WINDOW = 16;    // seqs before `expected` that count as duplicates
 
@@ -109,6 +112,6 @@ enum CodecError : uint8_t {
 
 const char* codecErrorName(CodecError e);
 
-}  // namespace maxl
+}  // namespace maxl_fw
 
 #endif
