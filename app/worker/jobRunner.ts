@@ -1,0 +1,278 @@
+/**
+ * Runs one job at a time on the author: checks it against the soft limits, shows
+ * its whole path, feeds its moves into the bounded queue as room frees up, and
+ * follows its progress from the segments that finish.
+ *
+ * Moves are only handed over while the queue has room, synchronously (the core's
+ * fast path), so a cancel or a STOP between two moves is never overtaken by a
+ * move that was waiting for room.
+ */
+import type { Maxl, Segment } from '../../core/index.ts';
+import { errorWords } from './errorWords.ts';
+import { patternPoints } from './jobPatterns.ts';
+import type { JobPhase, JobProgress, JobRequest, LogLevel } from './protocol.ts';
+import { yieldToEvents } from './yieldToEvents.ts';
+
+export interface JobHost {
+  log(level: LogLevel, code: string, message: string): void;
+  /** The job's whole path: (n + 1) × 3 vertices, the tool's start first. */
+  preview(name: string, points: Float32Array, segments: number): void;
+}
+
+interface Run {
+  name: string;
+  maxl: Maxl;
+  points: Float64Array;
+  axes: number;
+  count: number;
+  maxVelocity: number;
+  phase: JobPhase;
+  /** No more moves are fed once set (cancel, STOP, a failure). */
+  stopped: boolean;
+  fed: number;
+  firstMoveId: number;
+  lastDoneMoveId: number;
+  totalLength: number;
+  doneLength: number;
+  /** s of motion of the finished segments */
+  motion_s: number;
+}
+
+/** Feed at most this long (ms) before letting commands in. */
+const FEED_SLICE_MS = 4;
+
+export class JobRunner {
+  private run: Run | null = null;
+  private watch: ReturnType<typeof setInterval> | null = null;
+
+  constructor(private readonly host: JobHost) {}
+
+  /** Whether a job holds the machine (jogs wait until it ends). */
+  get active(): boolean {
+    const p = this.run?.phase;
+    return p === 'loading' || p === 'running' || p === 'pausing' || p === 'paused' || p === 'cancelling';
+  }
+
+  get fed(): number {
+    return this.run?.fed ?? 0;
+  }
+
+  progress(): JobProgress | null {
+    const r = this.run;
+    if (!r) return null;
+    const doneSegments = r.firstMoveId > 0 && r.lastDoneMoveId >= r.firstMoveId ? r.lastDoneMoveId - r.firstMoveId + 1 : 0;
+    const remaining = Math.max(0, r.totalLength - r.doneLength);
+    const rate = r.motion_s > 0.2 ? r.doneLength / r.motion_s : r.maxVelocity;
+    const finished = r.phase === 'done' || r.phase === 'cancelled' || r.phase === 'halted' || r.phase === 'failed';
+    return {
+      name: r.name,
+      phase: r.phase,
+      totalSegments: r.count,
+      doneSegments: Math.min(r.count, doneSegments),
+      totalLength: r.totalLength,
+      doneLength: Math.min(r.totalLength, r.doneLength),
+      eta_s: finished ? 0 : rate > 0 ? remaining / rate : NaN,
+      elapsed_s: r.motion_s,
+    };
+  }
+
+  start(request: JobRequest, maxl: Maxl, origin: readonly number[]): void {
+    if (this.active) {
+      this.host.log('warning', 'JOB_BUSY', `“${this.run?.name}” is still running: cancel it first, or wait until it ends.`);
+      return;
+    }
+    const axes = maxl.config.motionAxes.length;
+    let points: Float64Array;
+    if ('pattern' in request) points = patternPoints(request.pattern, request.segments, request.size_mm, origin);
+    else if (request.axes === axes) points = request.points;
+    else {
+      this.host.log('error', 'JOB_INVALID', `the job has ${request.axes} axes per point but this machine has ${axes} (${maxl.config.motionAxes.join(', ')})`);
+      return;
+    }
+    const count = Math.floor(points.length / axes);
+    const outside = firstOutside(points, axes, maxl.config.softMin, maxl.config.softMax);
+    if (outside >= 0) {
+      const p = Array.from(points.subarray(outside * axes, outside * axes + axes), (v) => v.toFixed(2)).join(', ');
+      this.host.log('error', 'SOFT_LIMIT', `“${request.name}” leaves the soft limits at point ${outside + 1} (${p} mm). Set the origin elsewhere, use a smaller job, or widen the soft limits in Configure → Axes.`);
+      return;
+    }
+    const start = maxl.nextMoveStart;
+    this.run = {
+      name: request.name,
+      maxl,
+      points,
+      axes,
+      count,
+      maxVelocity: request.maxVelocity,
+      phase: 'loading',
+      stopped: false,
+      fed: 0,
+      firstMoveId: 0,
+      lastDoneMoveId: 0,
+      totalLength: pathLength(start, points, axes),
+      doneLength: 0,
+      motion_s: 0,
+    };
+    this.host.preview(request.name, previewVertices(start, points, axes), count);
+    this.host.log('info', 'JOB', `“${request.name}”: ${count.toLocaleString('en')} segments, ${this.run.totalLength.toFixed(0)} mm.`);
+    const run = this.run;
+    run.phase = 'running';
+    void this.feed(run).catch((err) => this.fail(run, err));
+    this.startWatch();
+  }
+
+  pause(): void {
+    const r = this.run;
+    if (!r || r.phase !== 'running') return;
+    r.phase = 'pausing';
+    r.maxl.pause().then(
+      () => {
+        if (r.phase === 'pausing') r.phase = 'paused';
+      },
+      (err) => this.fail(r, err),
+    );
+  }
+
+  resume(): void {
+    const r = this.run;
+    if (!r || (r.phase !== 'paused' && r.phase !== 'pausing')) return;
+    r.maxl.resume();
+    r.phase = 'running';
+  }
+
+  cancel(): void {
+    const r = this.run;
+    if (!r || !this.active) return;
+    r.stopped = true;
+    r.phase = 'cancelling';
+    r.maxl.cancel().then(
+      () => {
+        if (r.phase === 'cancelling') r.phase = 'cancelled';
+        this.host.log('info', 'JOB', `“${r.name}” cancelled after ${this.progress()?.doneSegments ?? 0} segments; the machine rests on the path.`);
+      },
+      (err) => this.fail(r, err),
+    );
+  }
+
+  /** STOP was pressed: the job is over. */
+  halted(): void {
+    const r = this.run;
+    if (!r || !this.active) return;
+    r.stopped = true;
+    r.phase = 'halted';
+  }
+
+  /** The machine can no longer run the job (a device was lost, the runtime was replaced). */
+  abort(reason: string): void {
+    const r = this.run;
+    if (!r || !this.active) return;
+    r.stopped = true;
+    r.phase = 'failed';
+    this.host.log('error', 'JOB_FAILED', `“${r.name}” stopped: ${reason}`);
+  }
+
+  /** A segment finished (from the snapshot builder). */
+  onHistorical(seg: Segment): void {
+    const r = this.run;
+    if (!r || r.firstMoveId === 0 || seg.moveId < r.firstMoveId) return;
+    r.doneLength += seg.length;
+    r.motion_s += seg.duration_s;
+    if (seg.moveId > r.lastDoneMoveId) r.lastDoneMoveId = seg.moveId;
+  }
+
+  private async feed(r: Run): Promise<void> {
+    const { maxl, points, axes } = r;
+    const queue = maxl.queue;
+    let sliceStart = performance.now();
+    for (let i = 0; i < r.count; i++) {
+      while (!r.stopped && !queue.hasRoom()) await roomIn(maxl, r);
+      if (r.stopped) return;
+      const endPosition = Array.from(points.subarray(i * axes, i * axes + axes));
+      const queued = maxl.addSegmentToQueue({ endPosition, maxVelocity: r.maxVelocity });
+      r.fed = i + 1;
+      if (i === 0) r.firstMoveId = (await queued).moveId;
+      else queued.catch((err) => this.fail(r, err));
+      if (performance.now() - sliceStart > FEED_SLICE_MS) {
+        await yieldToEvents();
+        sliceStart = performance.now();
+      }
+    }
+  }
+
+  /** Watches for the end of the job while it is active. */
+  private startWatch(): void {
+    if (this.watch) return;
+    this.watch = setInterval(() => {
+      const r = this.run;
+      if (!r || !this.active) {
+        if (this.watch) clearInterval(this.watch);
+        this.watch = null;
+        return;
+      }
+      const q = r.maxl.queue;
+      if (r.phase === 'running' && r.fed === r.count && q.untransmittedCount === 0 && q.transmittedEnd_us <= r.maxl.scheduler.now()) {
+        r.phase = 'done';
+        this.host.log('info', 'JOB', `“${r.name}” done: ${r.count.toLocaleString('en')} segments in ${r.motion_s.toFixed(1)} s of motion.`);
+      }
+    }, 50);
+  }
+
+  private fail(r: Run, err: unknown): void {
+    if (r.stopped && r.phase !== 'running') return;
+    r.stopped = true;
+    r.phase = 'failed';
+    const words = errorWords(err);
+    this.host.log('error', words.code, `“${r.name}” stopped: ${words.message}`);
+  }
+}
+
+/** Resolves when the queue may have room again (a segment was transmitted or removed), or the run stopped. */
+function roomIn(maxl: Maxl, r: Run): Promise<void> {
+  return new Promise((resolve) => {
+    const timer = setInterval(() => {
+      if (r.stopped) done();
+    }, 20);
+    const unsubscribe = maxl.queue.subscribe((e) => {
+      if (e.type === 'transmitted' || e.type === 'removed') done();
+    });
+    function done() {
+      clearInterval(timer);
+      unsubscribe();
+      resolve();
+    }
+  });
+}
+
+function firstOutside(points: Float64Array, axes: number, min: readonly number[], max: readonly number[]): number {
+  for (let i = 0; i < points.length; i++) {
+    const a = i % axes;
+    if (points[i] < min[a] || points[i] > max[a]) return Math.floor(i / axes);
+  }
+  return -1;
+}
+
+function pathLength(start: readonly number[], points: Float64Array, axes: number): number {
+  let total = 0;
+  let prev = 0;
+  for (let i = 0; i < points.length; i += axes) {
+    let d2 = 0;
+    for (let a = 0; a < axes; a++) {
+      const from = i === 0 ? start[a] : points[prev + a];
+      const d = points[i + a] - from;
+      d2 += d * d;
+    }
+    total += Math.sqrt(d2);
+    prev = i;
+  }
+  return total;
+}
+
+function previewVertices(start: readonly number[], points: Float64Array, axes: number): Float32Array {
+  const n = points.length / axes;
+  const out = new Float32Array((n + 1) * 3);
+  for (let a = 0; a < Math.min(3, axes); a++) out[a] = start[a];
+  for (let i = 0; i < n; i++) {
+    for (let a = 0; a < Math.min(3, axes); a++) out[(i + 1) * 3 + a] = points[i * axes + a];
+  }
+  return out;
+}

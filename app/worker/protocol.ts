@@ -1,0 +1,243 @@
+/**
+ * The one typed message interface between the workbench's main thread and the
+ * worker that runs the MAXL core (DESIGN.md decision 9).
+ *
+ *   main → worker   `Command`: what the user asked for (connect, configure, jog, jobs, stop)
+ *   worker → main   `WorkerEvent`: the machine's state, log entries, and at most one
+ *                   `Snapshot` per animation frame, whose typed arrays are transferred
+ *
+ * The main thread asks for a snapshot from requestAnimationFrame and asks again only
+ * once the last one arrived, so snapshots never queue up and never outpace frames.
+ */
+import type { MaxlConfig, TransformConfig } from '../../core/index.ts';
+
+// ---------------------------------------------------------------------------
+// Shared shapes
+
+/** A machine configuration as the workbench edits, stores and exports it: plain JSON. */
+export type MachineConfig = Omit<MaxlConfig, 'transforms'> & {
+  transforms?: Exclude<TransformConfig, { type: 'function' }>[];
+};
+
+export type ReaderKindName = 'position' | 'velocity' | 'acceleration' | 'event' | 'sensor';
+
+export interface ReaderView {
+  name: string;
+  kind: ReaderKindName;
+}
+
+/** One device as the device list shows it. */
+export interface DeviceView {
+  /** Stable id of the connection (not the device's name, which only its hello tells). */
+  id: string;
+  /** Where it is: "sim:motorOne", "USB 2341:0043". */
+  label: string;
+  /** The name its firmware reports; '' until it said hello. */
+  name: string;
+  firmware: string;
+  readers: ReaderView[];
+  connection: 'connecting' | 'open' | 'lost' | 'closed';
+  /** The device's own state from its last status: idle, running, braking, stopped, halted… */
+  deviceState: string;
+  rtt_us: number;
+  syncError_us: number;
+  simulated: boolean;
+}
+
+export interface PresetView {
+  id: string;
+  description: string;
+}
+
+/** Where the machine stands, as a whole. */
+export type MachinePhase =
+  | 'empty' //            no device
+  | 'connecting' //       opening sessions, syncing clocks
+  | 'ready' //            streaming: jogs and jobs run
+  | 'not-ready' //        the config or the subscriptions are wrong (see `problem`)
+  | 'halted'; //          STOP was pressed: every device stopped where it was
+
+export interface MachineState {
+  phase: MachinePhase;
+  /** In words a user can act on, when phase is not-ready or halted. */
+  problem: string;
+  /** Which preset runs, or null for real boards. */
+  presetId: string | null;
+  presets: PresetView[];
+  config: MachineConfig;
+  motionAxes: string[];
+  actuatorAxes: string[];
+  /** mm, machine coordinates, per motion axis: the work origin. */
+  origin: number[];
+}
+
+export type MismatchProblem = 'unknown device' | 'unknown reader' | 'wrong kind' | 'unknown track' | 'reader used twice';
+
+/** What is wrong with one subscription, said where the editor draws it. */
+export interface SubscriptionProblem {
+  subscription: number;
+  problem: MismatchProblem;
+  message: string;
+}
+
+export interface ConfigCheck {
+  /** Bumped per check so that the editor shows the answer to its latest edit. */
+  requestId: number;
+  /** The config error (field and message), if the config as a whole is invalid. */
+  error: { field: string; message: string } | null;
+  subscriptions: SubscriptionProblem[];
+  /** Every track of the config, for the editor's right side. */
+  tracks: { name: string; kind: 'position' | 'velocity' | 'acceleration' | 'event'; space?: 'motion' | 'actuator' }[];
+}
+
+export type LogLevel = 'info' | 'warning' | 'error';
+
+export interface LogEntry {
+  id: number;
+  /** ms since the epoch */
+  at: number;
+  level: LogLevel;
+  /** A MaxlError code, or a workbench one. */
+  code: string;
+  message: string;
+}
+
+export type JobPhase = 'loading' | 'running' | 'pausing' | 'paused' | 'cancelling' | 'cancelled' | 'done' | 'failed' | 'halted';
+
+export interface JobProgress {
+  name: string;
+  phase: JobPhase;
+  totalSegments: number;
+  /** Segments the machine has finished. */
+  doneSegments: number;
+  /** mm */
+  totalLength: number;
+  doneLength: number;
+  /** s, or NaN while unknown */
+  eta_s: number;
+  /** s of motion so far (pauses excluded) */
+  elapsed_s: number;
+}
+
+/** What one hold-to-jog release measured. */
+export interface JogStopReport {
+  /** mm/s at release */
+  speed: number;
+  /** ms from the release (the input event's time) until the plan starts braking */
+  brakeLatency_ms: number;
+  /** ms from the release until the plan is at rest (braking at the limit included) */
+  restLatency_ms: number;
+  /** ms the braking itself takes at the acceleration limit */
+  braking_ms: number;
+}
+
+export type JobPattern = 'square' | 'spiral' | 'zigzag';
+
+/** A job: a polyline, given as points or as a pattern the worker draws (so big jobs cost the page nothing). */
+export type JobRequest = {
+  name: string;
+  /** mm/s cap for every move */
+  maxVelocity: number;
+} & (
+  | {
+      /** Drawn from the work origin, within size_mm in x and y. */
+      pattern: JobPattern;
+      segments: number;
+      size_mm: number;
+    }
+  | {
+      /** n points × axes, machine mm, row-major. The first move goes from the tool to point 0. */
+      points: Float64Array;
+      axes: number;
+    }
+);
+
+// ---------------------------------------------------------------------------
+// Snapshots
+
+/** Segment states in `Snapshot.queueStates`, as the view colours them. */
+export const QUEUE_UNPLANNED = 0;
+export const QUEUE_PLANNED = 1;
+
+export interface Snapshot {
+  type: 'snapshot';
+  /** The runtime these segments belong to: a new one clears the view's locked path. */
+  runtimeId: number;
+  /** Author µs now. */
+  time_us: number;
+  /** The tool by the author's real-time estimate, machine mm per motion axis. */
+  position: Float64Array;
+  /** mm/s along the path. */
+  speed: number;
+  syncError_us: number;
+  /**
+   * Transmitted segments (locked, append-only) since the last snapshot: 2 vertices
+   * (x, y, z) each, starting at segment index `lockedFrom`.
+   */
+  lockedFrom: number;
+  locked: Float32Array;
+  /** Segments of the locked path that have finished (historical): the first `historical` of it. */
+  historical: number;
+  /** Untransmitted segments (2 vertices each) and their states, or null when unchanged. */
+  queue: Float32Array | null;
+  queueStates: Uint8Array | null;
+  /** Job moves handed to the queue so far (the job preview is unplanned from there on). */
+  jobFed: number;
+  job: JobProgress | null;
+  /** Every 250 ms or on change; else null. */
+  devices: DeviceView[] | null;
+  /** Simulator ground truth, if the machine is simulated: step counts per motor. */
+  truth: Record<string, number> | null;
+}
+
+// ---------------------------------------------------------------------------
+// main → worker
+
+export type Command =
+  | { type: 'use-preset'; presetId: string; config?: MachineConfig }
+  | {
+      type: 'add-port';
+      label: string;
+      readable: ReadableStream<Uint8Array>;
+      writable: WritableStream<Uint8Array>;
+    }
+  | { type: 'remove-device'; id: string }
+  | { type: 'set-config'; config: MachineConfig }
+  | { type: 'check-config'; config: MachineConfig; requestId: number }
+  | { type: 'jog-step'; delta: number[]; speed: number }
+  | { type: 'jog-start'; direction: number[]; speed: number }
+  /** `releasedAt`: the input event's time, ms since the epoch. */
+  | { type: 'jog-stop'; releasedAt: number }
+  | { type: 'set-origin' }
+  | { type: 'go-to-origin'; speed: number }
+  | { type: 'stop' }
+  | { type: 'rearm' }
+  | { type: 'job-start'; job: JobRequest }
+  | { type: 'job-pause' }
+  | { type: 'job-resume' }
+  | { type: 'job-cancel' }
+  | { type: 'frame' };
+
+// ---------------------------------------------------------------------------
+// worker → main
+
+export type WorkerEvent =
+  | Snapshot
+  | { type: 'machine'; state: MachineState }
+  | { type: 'config-check'; check: ConfigCheck }
+  | { type: 'log'; entry: LogEntry }
+  | { type: 'jog-stopped'; report: JogStopReport }
+  /** A job's whole path, once, for the view (n points × 3, machine mm; the tool's start first). */
+  | { type: 'job-preview'; name: string; points: Float32Array; segments: number };
+
+/** The transferable buffers of an event, for postMessage. */
+export function transferablesOf(e: WorkerEvent): Transferable[] {
+  if (e.type === 'snapshot') {
+    const list: Transferable[] = [e.position.buffer, e.locked.buffer];
+    if (e.queue) list.push(e.queue.buffer);
+    if (e.queueStates) list.push(e.queueStates.buffer);
+    return list as Transferable[];
+  }
+  if (e.type === 'job-preview') return [e.points.buffer as ArrayBuffer];
+  return [];
+}

@@ -1,0 +1,43 @@
+/**
+ * The simulated presets, running in real time inside the worker: each device is
+ * a wasm instance of a real firmware example (served from /firmware/), behind a
+ * USB-like link model, driving one plant.
+ */
+import type { Scheduler } from '../../core/index.ts';
+import { createSimulatedMachine, type SimulatedMachine } from '../../core/sim/machine.ts';
+import { fetchWasmLoader } from '../../core/sim/device/wasmLoader.ts';
+import { PRESETS } from '../../core/sim/presets/index.ts';
+import type { MachineConfig, PresetView } from './protocol.ts';
+
+/** The preset a first visit opens. */
+export const DEFAULT_PRESET = 'lightPainter';
+
+export function presetViews(): PresetView[] {
+  return Object.values(PRESETS).map((make) => {
+    const p = make();
+    return { id: p.id, description: p.description };
+  });
+}
+
+export function presetConfig(id: string): MachineConfig {
+  const make = PRESETS[id];
+  if (!make) throw new Error(`there is no simulated machine "${id}" (presets: ${Object.keys(PRESETS).join(', ')})`);
+  return make().config as MachineConfig;
+}
+
+const loader = fetchWasmLoader(new URL('/firmware/', self.location.href).href);
+
+export async function startSimulatedMachine(id: string, scheduler: Scheduler, onError: (err: unknown) => void): Promise<SimulatedMachine> {
+  const make = PRESETS[id];
+  if (!make) throw new Error(`there is no simulated machine "${id}"`);
+  const preset = make();
+  // The page runs for hours: keep no per-sample ground truth.
+  if (preset.plant.accelerometer) preset.plant.accelerometer = { ...preset.plant.accelerometer, recordSamples: false };
+  return createSimulatedMachine(preset, scheduler, { loader, onError, seed: 1 });
+}
+
+/** Ground truth for the page: each motor's step count. */
+export function truthOf(sim: SimulatedMachine): Record<string, number> {
+  sim.sync();
+  return sim.plant.motorSteps();
+}

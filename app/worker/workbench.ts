@@ -1,0 +1,436 @@
+/**
+ * Everything the worker owns: the devices (simulated or real ports), the machine
+ * configuration, the MAXL author running them, jogs and jobs, and the snapshots
+ * the page draws.
+ *
+ * A MAXL author is built for one configuration and one set of links, and stops
+ * streaming for good after a halt; so whenever the configuration or the devices
+ * change, and on Re-arm after STOP, the workbench ends the author and starts a new
+ * one where the machine stands. Ports stay open across that (SharedPort).
+ */
+import { createMAXL, RealScheduler, type DeviceInfo, type Maxl, type RuntimeEvent } from '../../core/index.ts';
+import type { SimulatedMachine } from '../../core/sim/machine.ts';
+import { checkConfig } from './configCheck.ts';
+import { errorWords } from './errorWords.ts';
+import { JobRunner } from './jobRunner.ts';
+import { JogController, epochNow } from './jogController.ts';
+import type {
+  Command,
+  DeviceView,
+  JobRequest,
+  LogLevel,
+  MachineConfig,
+  MachinePhase,
+  MachineState,
+  ReaderKindName,
+  Snapshot,
+  WorkerEvent,
+} from './protocol.ts';
+import { SharedPort } from './sharedPort.ts';
+import { presetConfig, presetViews, startSimulatedMachine, truthOf } from './simulatedMachines.ts';
+import { SnapshotBuilder } from './snapshotBuilder.ts';
+
+interface DeviceConnection {
+  id: string;
+  port: SharedPort;
+  simulated: boolean;
+  /** What it said in its last hello. */
+  info: DeviceInfo | null;
+}
+
+/** Device reports go to the page at most this often, ms. */
+const DEVICE_REPORT_MS = 250;
+
+export class Workbench {
+  private readonly scheduler = new RealScheduler();
+  private devices: DeviceConnection[] = [];
+  private sim: SimulatedMachine | null = null;
+  private presetId: string | null = null;
+  private config: MachineConfig = { motionAxes: ['x', 'y'], limits: { maxVelocity: 100, maxAcceleration: 1000 } };
+  private maxl: Maxl | null = null;
+  private runtimeId = 0;
+  private phase: MachinePhase = 'empty';
+  private problem = '';
+  private origin: number[] = [0, 0];
+  /** Machine mm where the next author starts. */
+  private position: number[] = [0, 0];
+  private nextDeviceId = 1;
+  private nextLogId = 1;
+  private lastDeviceReport = 0;
+  private devicesChanged = true;
+  /** Restarts run one after another. */
+  private restarting: Promise<void> = Promise.resolve();
+  private readonly snapshots = new SnapshotBuilder();
+  private readonly jobs: JobRunner;
+  private readonly jog: JogController;
+
+  constructor(private readonly post: (e: WorkerEvent) => void) {
+    this.jobs = new JobRunner({
+      log: (level, code, message) => this.log(level, code, message),
+      preview: (name, points, segments) => this.post({ type: 'job-preview', name, points, segments }),
+    });
+    this.jog = new JogController({
+      warn: (code, message) => this.log('warning', code, message),
+      report: (report) => this.post({ type: 'jog-stopped', report }),
+    });
+    this.snapshots.onHistorical = (seg) => this.jobs.onHistorical(seg);
+  }
+
+  handle(cmd: Command): void {
+    switch (cmd.type) {
+      case 'frame':
+        this.post(this.snapshot());
+        return;
+      case 'use-preset':
+        void this.usePreset(cmd.presetId, cmd.config);
+        return;
+      case 'add-port':
+        void this.addPort(cmd.label, cmd.readable, cmd.writable);
+        return;
+      case 'remove-device':
+        void this.removeDevice(cmd.id);
+        return;
+      case 'set-config':
+        this.config = cmd.config;
+        this.publish();
+        void this.restart();
+        return;
+      case 'check-config':
+        this.post({ type: 'config-check', check: checkConfig(cmd.config, this.knownDevices(), cmd.requestId) });
+        return;
+      case 'jog-step':
+        if (this.canJog()) this.jog.step(this.maxl as Maxl, cmd.delta, cmd.speed);
+        return;
+      case 'jog-start':
+        if (this.canJog()) this.jog.start(this.maxl as Maxl, cmd.direction, cmd.speed);
+        return;
+      case 'jog-stop':
+        void this.jog.stop(cmd.releasedAt);
+        return;
+      case 'set-origin':
+        if (this.maxl && !this.jobs.active) {
+          this.origin = [...this.maxl.nextMoveStart];
+          this.log('info', 'ORIGIN', `Origin set at ${this.origin.map((v) => v.toFixed(3)).join(', ')} mm (machine coordinates).`);
+          this.publish();
+        }
+        return;
+      case 'go-to-origin':
+        if (this.canJog()) this.jog.moveTo(this.maxl as Maxl, this.origin, cmd.speed);
+        return;
+      case 'stop':
+        void this.stop();
+        return;
+      case 'rearm':
+        void this.restart();
+        return;
+      case 'job-start':
+        this.startJob(cmd.job);
+        return;
+      case 'job-pause':
+        this.jobs.pause();
+        return;
+      case 'job-resume':
+        this.jobs.resume();
+        return;
+      case 'job-cancel':
+        this.jobs.cancel();
+        return;
+    }
+  }
+
+  // --- devices ---
+
+  private async usePreset(id: string, config?: MachineConfig): Promise<void> {
+    let base: MachineConfig;
+    try {
+      base = presetConfig(id);
+    } catch (err) {
+      this.log('error', 'PRESET', errorWords(err).message);
+      return;
+    }
+    await this.closeDevices();
+    this.presetId = id;
+    this.config = config ?? base;
+    this.origin = new Array<number>(this.config.motionAxes.length).fill(0);
+    this.position = [...this.origin];
+    this.phase = 'connecting';
+    this.problem = '';
+    this.publish();
+    try {
+      const sim = await startSimulatedMachine(id, this.scheduler, (err) => this.log('error', 'SIM', `The simulated machine failed: ${errorWords(err).message}`));
+      this.sim = sim;
+      for (const [name, link] of Object.entries(sim.links)) {
+        this.devices.push({ id: `sim-${this.nextDeviceId++}`, port: new SharedPort({ ...link, label: link.label ?? `sim:${name}` }), simulated: true, info: null });
+      }
+      this.log('info', 'SIM', `Simulated ${id}: ${Object.keys(sim.links).join(', ')}.`);
+    } catch (err) {
+      const words = errorWords(err);
+      this.phase = 'not-ready';
+      this.problem = `The simulated machine could not start: ${words.message}`;
+      this.log('error', words.code, this.problem);
+      this.publish();
+      return;
+    }
+    this.devicesChanged = true;
+    await this.restart();
+  }
+
+  private async addPort(label: string, readable: ReadableStream<Uint8Array>, writable: WritableStream<Uint8Array>): Promise<void> {
+    if (this.sim) {
+      // A real board joins: the simulated machine goes, the configuration stays for editing.
+      await this.closeDevices();
+      this.presetId = null;
+      this.log('info', 'CONNECT', 'Left the simulated machine for real boards; the configuration is kept: check its subscriptions.');
+    }
+    this.devices.push({ id: `port-${this.nextDeviceId++}`, port: new SharedPort({ readable, writable, label }), simulated: false, info: null });
+    this.log('info', 'CONNECT', `Connected ${label}.`);
+    this.devicesChanged = true;
+    await this.restart();
+  }
+
+  private async removeDevice(id: string): Promise<void> {
+    const device = this.devices.find((d) => d.id === id);
+    if (!device) return;
+    if (device.simulated) {
+      this.log('warning', 'SIM', 'A simulated device goes with its machine: choose another machine from the menu instead.');
+      return;
+    }
+    this.devices = this.devices.filter((d) => d !== device);
+    await this.endAuthor();
+    await device.port.close();
+    this.devicesChanged = true;
+    await this.restart();
+  }
+
+  private async closeDevices(): Promise<void> {
+    await this.endAuthor();
+    for (const d of this.devices) await d.port.close();
+    this.devices = [];
+    await this.sim?.stop();
+    this.sim = null;
+    this.devicesChanged = true;
+  }
+
+  private knownDevices(): DeviceInfo[] {
+    return this.devices.flatMap((d) => (d.info ? [d.info] : []));
+  }
+
+  // --- the author ---
+
+  /** Ends the current author (if any) and starts one for the current config and devices. */
+  restart(): Promise<void> {
+    this.restarting = this.restarting.then(() => this.doRestart());
+    return this.restarting;
+  }
+
+  private async doRestart(): Promise<void> {
+    await this.endAuthor();
+    if (this.devices.length === 0) {
+      this.setPhase('empty', 'No device: add one, or choose a simulated machine.');
+      return;
+    }
+    const runtimeId = ++this.runtimeId;
+    this.setPhase('connecting', '');
+    const axes = this.config.motionAxes?.length ?? 0;
+    if (this.position.length !== axes) this.position = new Array<number>(axes).fill(0);
+    if (this.origin.length !== axes) this.origin = new Array<number>(axes).fill(0);
+    let maxl: Maxl;
+    try {
+      maxl = createMAXL(this.config, { links: this.devices.map((d) => d.port.session()), initialPosition: this.position, scheduler: this.scheduler });
+    } catch (err) {
+      const words = errorWords(err);
+      this.setPhase('not-ready', words.message);
+      this.log('error', words.code, words.message);
+      return;
+    }
+    this.maxl = maxl;
+    this.snapshots.attach(maxl);
+    maxl.on((e) => this.onRuntime(e, runtimeId));
+    try {
+      await maxl.begin();
+      if (runtimeId !== this.runtimeId) return;
+      this.learnDevices(maxl);
+      this.setPhase('ready', '');
+      this.log('info', 'READY', `Ready: ${this.knownDevices().map((d) => d.name).join(', ')} in sync.`);
+    } catch (err) {
+      if (runtimeId !== this.runtimeId) return;
+      this.learnDevices(maxl);
+      const words = errorWords(err);
+      this.log('error', words.code, words.message);
+      await this.endAuthor();
+      this.setPhase('not-ready', words.message);
+    }
+  }
+
+  /** Remembers what each device said in its hello (sessions are in link order). */
+  private learnDevices(maxl: Maxl): void {
+    maxl.devices().forEach((report, i) => {
+      const d = this.devices[i];
+      if (!d || !report.firmware) return;
+      d.info = {
+        name: report.name,
+        protocol: 0,
+        firmware: report.firmware,
+        clockHz: 0,
+        segmentCapacity: 0,
+        eventCapacity: 0,
+        readers: report.readers,
+      };
+    });
+    this.devicesChanged = true;
+  }
+
+  private async endAuthor(): Promise<void> {
+    const maxl = this.maxl;
+    if (!maxl) return;
+    this.maxl = null;
+    this.jobs.abort('the machine was reconfigured');
+    this.jog.reset();
+    this.snapshots.attach(null);
+    // After STOP or a lost link the devices report where they stopped ('stopped'); otherwise the plan knows.
+    if (this.phase === 'ready') this.position = [...maxl.estimate().position];
+    this.runtimeId++;
+    await maxl.end();
+  }
+
+  private onRuntime(e: RuntimeEvent, runtimeId: number): void {
+    if (runtimeId !== this.runtimeId) return;
+    if (e.type === 'error') {
+      const words = errorWords(e.error);
+      this.log('error', words.code, words.message);
+    } else if (e.type === 'device') {
+      this.devicesChanged = true;
+      if (e.state === 'lost' || e.state === 'rebooted') {
+        this.jobs.abort(`${e.device} was lost`);
+        this.jog.reset();
+        if (this.phase === 'ready') this.setPhase('not-ready', `${e.device}: ${e.reason ?? e.state}. The machine brakes to rest on the path. Check the cable and power, then press Re-arm.`);
+      }
+    } else if (e.type === 'stopped' && e.position) {
+      this.position = [...e.position];
+    }
+  }
+
+  private canJog(): boolean {
+    if (!this.maxl || this.phase !== 'ready') {
+      this.log('warning', 'NOT_READY', `Cannot jog: the machine is ${this.phase}${this.problem ? ` (${this.problem.split('\n')[0]})` : ''}.`);
+      return false;
+    }
+    if (this.jobs.active) {
+      this.log('warning', 'JOB_BUSY', 'Cannot jog while a job runs: pause or cancel it first.');
+      return false;
+    }
+    return true;
+  }
+
+  private startJob(request: JobRequest): void {
+    if (!this.maxl || this.phase !== 'ready') {
+      this.log('warning', 'NOT_READY', `Cannot start “${request.name}”: the machine is ${this.phase}.`);
+      return;
+    }
+    if (this.jog.isHolding) return;
+    this.jobs.start(request, this.maxl, this.origin);
+  }
+
+  /** STOP: every device stops where it is, now. */
+  private async stop(): Promise<void> {
+    const maxl = this.maxl;
+    this.jog.reset();
+    this.jobs.halted();
+    if (!maxl || this.phase !== 'ready') {
+      this.log('warning', 'STOP', 'STOP: nothing was streaming.');
+      return;
+    }
+    this.position = [...maxl.estimate().position];
+    this.setPhase('halted', 'STOP pressed: every device stopped where it was. Press Re-arm to continue from there.');
+    this.log('warning', 'STOP', 'STOP: HALT sent to every device.');
+    try {
+      await maxl.halt();
+    } catch (err) {
+      const words = errorWords(err);
+      this.log('error', words.code, words.message);
+    }
+  }
+
+  // --- to the page ---
+
+  private setPhase(phase: MachinePhase, problem: string): void {
+    this.phase = phase;
+    this.problem = problem;
+    this.publish();
+  }
+
+  private publish(): void {
+    const state: MachineState = {
+      phase: this.phase,
+      problem: this.problem,
+      presetId: this.presetId,
+      presets: presetViews(),
+      config: this.config,
+      motionAxes: this.config.motionAxes ?? [],
+      actuatorAxes: (this.config.transforms ?? []).flatMap((t) => t.to),
+      origin: this.origin,
+    };
+    this.post({ type: 'machine', state });
+  }
+
+  log(level: LogLevel, code: string, message: string): void {
+    this.post({ type: 'log', entry: { id: this.nextLogId++, at: Date.now(), level, code, message } });
+  }
+
+  private snapshot(): Snapshot {
+    const maxl = this.maxl;
+    const axes = this.config.motionAxes?.length ?? 0;
+    const estimate = maxl?.estimate();
+    const position = new Float64Array(axes);
+    const at = estimate?.position ?? this.position;
+    for (let i = 0; i < axes; i++) position[i] = at[i] ?? 0;
+    const locked = this.snapshots.takeLocked();
+    const queue = this.snapshots.takeQueue();
+    const now = epochNow();
+    let devices: DeviceView[] | null = null;
+    if (this.devicesChanged || now - this.lastDeviceReport > DEVICE_REPORT_MS) {
+      devices = this.deviceViews();
+      this.lastDeviceReport = now;
+      this.devicesChanged = false;
+    }
+    return {
+      type: 'snapshot',
+      runtimeId: this.runtimeId,
+      time_us: this.scheduler.now(),
+      position,
+      speed: estimate?.speed ?? 0,
+      syncError_us: estimate?.syncError_us ?? NaN,
+      lockedFrom: locked.from,
+      locked: locked.vertices,
+      historical: this.snapshots.historicalCount,
+      queue: queue.vertices,
+      queueStates: queue.states,
+      jobFed: this.jobs.fed,
+      job: this.jobs.progress(),
+      devices,
+      truth: this.sim ? truthOf(this.sim) : null,
+    };
+  }
+
+  private deviceViews(): DeviceView[] {
+    const reports = this.maxl?.devices() ?? [];
+    return this.devices.map((d, i) => {
+      const r = reports[i];
+      const info = d.info;
+      return {
+        id: d.id,
+        label: d.port.label,
+        name: r?.firmware ? r.name : (info?.name ?? ''),
+        firmware: r?.firmware || info?.firmware || '',
+        readers: (r?.readers ?? info?.readers ?? []).map((x) => ({ name: x.name, kind: x.kind as ReaderKindName })),
+        connection: r ? (r.state === 'opening' ? 'connecting' : r.state) : d.port.broken ? 'lost' : 'closed',
+        deviceState: r?.deviceState ?? 'unknown',
+        rtt_us: r?.rtt_us ?? NaN,
+        syncError_us: r?.syncError_us ?? NaN,
+        simulated: d.simulated,
+      };
+    });
+  }
+}
+
+
