@@ -225,7 +225,8 @@ void Motion::beginBrake(uint32_t t, float speed, float sigma0, const int32_t* fr
     for (uint8_t i = 0; i < activeSlots_; i++) pos_[i] = from[i];
   float length = s.length;
   float decel = stopDecel_;
-  if (!(decel > 0.0f) || atRest(speed, decel)) {
+  // A speed that is not a positive finite number (absurd timing) stops here.
+  if (!(decel > 0.0f) || !(speed > 0.0f) || !isFiniteFloat(speed) || atRest(speed, decel)) {
     stopHere(queue_.headId(), sigma0);
     return;
   }

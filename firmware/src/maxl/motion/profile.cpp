@@ -97,7 +97,8 @@ BrakePiece planBrake(float v, float decel, float remaining) {
     b.distance = remaining;
   }
   float us = seconds * 1e6f;
-  b.duration = us < 1073741824.0f ? (uint32_t)(us + 0.5f) : 1073741824UL;
+  // NaN, negative or huge (from absurd inputs) must not reach the conversion.
+  b.duration = !(us > 0.0f) ? 0 : us < 1073741824.0f ? (uint32_t)(us + 0.5f) : 1073741824UL;
   return b;
 }
 

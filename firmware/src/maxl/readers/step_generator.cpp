@@ -49,7 +49,7 @@ void MAXL_StepGenerator::refreshCeilings() {
 
 void MAXL_StepGenerator::reference(int32_t units) {
   // n = floor(p/s + 1/2) = floor((2·p·2^16 + s_q) / (2·s_q))
-  int64_t n = floorDiv(2 * ((int64_t)units << 16) + stepQ_, 2 * stepQ_);
+  int64_t n = floorDiv(2 * ((int64_t)units * 65536) + stepQ_, 2 * stepQ_);
   steps_ = (int32_t)n;
   upQ_ = n * stepQ_ + stepQ_ / 2;
   refreshCeilings();
