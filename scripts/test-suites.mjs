@@ -10,4 +10,28 @@ export const suites = [
     describe: 'vitest: core planner, queue, tracks, transforms (property tests included)',
     command: ['npx', 'vitest', 'run'],
   },
+  {
+    name: 'firmware-host',
+    describe: 'firmware: C++ library on the host, GoogleTest via ctest (codec vs shared vectors, segment fixture, queue, braking, events, wrap)',
+    command: ['bash', 'scripts/firmware-host.sh'],
+    tools: ['cmake', 'make', 'c++', '/usr/include/gtest/gtest.h', '/usr/include/nlohmann/json.hpp'],
+  },
+  {
+    name: 'firmware-avr',
+    describe: 'firmware: every example built for the Arduino Uno (arduino-mk); flash/RAM table, fails under 25 % free RAM',
+    command: ['bash', 'scripts/firmware-avr.sh'],
+    tools: ['avr-gcc', 'avr-size', 'make', '/usr/share/arduino/Arduino.mk', '/usr/share/arduino/hardware/arduino/avr/cores/arduino/Arduino.h'],
+  },
+  {
+    name: 'firmware-wasm',
+    describe: 'firmware: every example rebuilt to wasm32, byte-identical to public/firmware/*.wasm, instantiated in Node',
+    command: ['bash', 'scripts/firmware-wasm.sh', '--check'],
+    tools: ['clang++', 'wasm-ld', 'node', '/usr/lib/wasm32-wasi/libc.a', '/usr/lib/wasm32-wasi/libc++.a'],
+  },
+  {
+    name: 'firmware-fuzz',
+    describe: 'firmware: libFuzzer (ASan+UBSan) over the frame receiver and every handler, 25 s from the seed corpus',
+    command: ['bash', 'scripts/firmware-fuzz.sh', '25'],
+    tools: ['clang++'],
+  },
 ];
