@@ -14,6 +14,9 @@ import type { MaxlConfig, TransformConfig } from '../../core/index.ts';
 // ---------------------------------------------------------------------------
 // Shared shapes
 
+/** The simulated machine a first visit opens. */
+export const DEFAULT_PRESET = 'lightPainter';
+
 /** A machine configuration as the workbench edits, stores and exports it: plain JSON. */
 export type MachineConfig = Omit<MaxlConfig, 'transforms'> & {
   transforms?: Exclude<TransformConfig, { type: 'function' }>[];

@@ -9,9 +9,6 @@ import { fetchWasmLoader } from '../../core/sim/device/wasmLoader.ts';
 import { PRESETS } from '../../core/sim/presets/index.ts';
 import type { MachineConfig, PresetView } from './protocol.ts';
 
-/** The preset a first visit opens. */
-export const DEFAULT_PRESET = 'lightPainter';
-
 export function presetViews(): PresetView[] {
   return Object.values(PRESETS).map((make) => {
     const p = make();

@@ -1,0 +1,181 @@
+/**
+ * The live 3D view of the trajectory: the locked path (historical and
+ * transmitted), the queue (planned and unplanned), a job's preview, the work
+ * area, the origin, and the tool at the author's real-time estimate.
+ *
+ * It draws only when something changed (a snapshot, the camera). Everything big
+ * lives in BufferGeometry that is appended to with update ranges, never rebuilt.
+ */
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import type { Snapshot } from '../worker/protocol.ts';
+import { AppendOnlyPath } from './appendOnlyPath.ts';
+import { JobPreview } from './jobPreview.ts';
+import { QueueLines } from './queueLines.ts';
+import { SCENE_COLORS, STATE_COLORS } from './colors.ts';
+import { ToolMarker } from './toolMarker.ts';
+import { WorkArea } from './workArea.ts';
+
+export type CameraMode = 'top' | '3d';
+
+export class TrajectoryView {
+  readonly renderer: THREE.WebGLRenderer;
+  private readonly scene = new THREE.Scene();
+  private readonly camera = new THREE.PerspectiveCamera(35, 1, 0.1, 100_000);
+  private readonly controls: OrbitControls;
+  private readonly locked = new AppendOnlyPath(STATE_COLORS.historical, STATE_COLORS.transmitted);
+  private readonly queue = new QueueLines(STATE_COLORS.planned, STATE_COLORS.unplanned);
+  private readonly preview = new JobPreview(STATE_COLORS.unplanned);
+  private readonly tool = new ToolMarker(SCENE_COLORS.tool, 14);
+  private readonly originMarker = new ToolMarker(SCENE_COLORS.origin, 9);
+  private readonly workArea = new WorkArea();
+  private readonly resizeObserver: ResizeObserver;
+  private runtimeId = -1;
+  private dirty = true;
+  private mode: CameraMode = 'top';
+  private frameHandle = 0;
+  /** Renders so far, and the snapshot-to-pixels bookkeeping the tests and the bench read. */
+  renders = 0;
+  readonly toolPosition = new THREE.Vector3();
+
+  constructor(private readonly canvas: HTMLCanvasElement) {
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true });
+    this.renderer.setPixelRatio(Math.min(2, window.devicePixelRatio));
+    this.scene.background = new THREE.Color(SCENE_COLORS.background);
+    this.scene.add(
+      this.workArea.group,
+      this.preview.line,
+      this.locked.historicalLines,
+      this.locked.transmittedLines,
+      this.queue.lines,
+      this.originMarker.points,
+      this.tool.points,
+    );
+    this.controls = new OrbitControls(this.camera, canvas);
+    this.controls.enableDamping = false;
+    this.controls.screenSpacePanning = true;
+    this.controls.addEventListener('change', () => this.requestRender());
+    this.resizeObserver = new ResizeObserver(() => this.resize());
+    this.resizeObserver.observe(canvas.parentElement ?? canvas);
+    this.setMode('top');
+    this.resize();
+  }
+
+  get cameraMode(): CameraMode {
+    return this.mode;
+  }
+
+  get stats() {
+    return {
+      lockedSegments: this.locked.segments,
+      historicalSegments: this.locked.historicalSegments,
+      queueSegments: this.queue.count,
+      previewSegments: this.preview.segments,
+      renders: this.renders,
+    };
+  }
+
+  /** The work area (soft limits), mm, per motion axis; infinite sides fall back to the content. */
+  setWorkArea(min: readonly number[], max: readonly number[]): void {
+    this.workArea.set(min, max);
+    this.requestRender();
+  }
+
+  setOrigin(origin: readonly number[]): void {
+    this.originMarker.moveTo(origin[0] ?? 0, origin[1] ?? 0, origin[2] ?? 0);
+    this.requestRender();
+  }
+
+  applySnapshot(s: Snapshot): void {
+    if (s.runtimeId !== this.runtimeId) {
+      this.runtimeId = s.runtimeId;
+      this.locked.clear();
+      this.queue.clear();
+    }
+    if (s.locked.length > 0) this.locked.append(s.lockedFrom, s.locked);
+    this.locked.setHistorical(s.historical);
+    if (s.queue && s.queueStates) this.queue.set(s.queue, s.queueStates);
+    this.preview.setFed(s.job && s.jobFed > 0 ? s.jobFed : 0);
+    const p = s.position;
+    this.tool.moveTo(p[0] ?? 0, p[1] ?? 0, p[2] ?? 0);
+    this.toolPosition.set(p[0] ?? 0, p[1] ?? 0, p[2] ?? 0);
+    this.dirty = true;
+    this.renderNow();
+  }
+
+  /** Shows a job's whole path. Returns once it is drawn. */
+  setPreview(vertices: Float32Array): void {
+    this.preview.set(vertices);
+    this.renderNow();
+  }
+
+  clearPreview(): void {
+    this.preview.clear();
+    this.requestRender();
+  }
+
+  setMode(mode: CameraMode): void {
+    this.mode = mode;
+    this.controls.enableRotate = mode === '3d';
+    this.camera.up.set(0, mode === 'top' ? 1 : 0, mode === 'top' ? 0 : 1);
+    this.fit();
+  }
+
+  /** Frames everything there is: work area, paths, preview, tool. */
+  fit(): void {
+    const box = new THREE.Box3();
+    box.union(this.workArea.box);
+    if (!this.locked.bounds.box.isEmpty()) box.union(this.locked.bounds.box);
+    if (!this.preview.bounds.box.isEmpty() && this.preview.segments > 0) box.union(this.preview.bounds.box);
+    box.expandByPoint(this.toolPosition);
+    if (box.isEmpty()) box.set(new THREE.Vector3(-50, -50, 0), new THREE.Vector3(50, 50, 0));
+    const center = box.getCenter(new THREE.Vector3());
+    const size = box.getSize(new THREE.Vector3());
+    const aspect = this.camera.aspect || 1;
+    const halfFov = THREE.MathUtils.degToRad(this.camera.fov / 2);
+    const fitHeight = Math.max(size.y, size.x / aspect, 1) * 0.56;
+    const distance = this.mode === 'top' ? fitHeight / Math.tan(halfFov) : (size.length() * 0.6) / Math.sin(halfFov);
+    this.controls.target.copy(center);
+    if (this.mode === 'top') this.camera.position.set(center.x, center.y, center.z + distance);
+    else this.camera.position.set(center.x + distance * 0.55, center.y - distance * 0.65, center.z + distance * 0.55);
+    this.camera.near = Math.max(0.01, distance / 1000);
+    this.camera.far = distance * 100;
+    this.camera.updateProjectionMatrix();
+    this.controls.update();
+    this.requestRender();
+  }
+
+  /** Renders at the next animation frame. */
+  requestRender(): void {
+    this.dirty = true;
+    if (this.frameHandle) return;
+    this.frameHandle = requestAnimationFrame(() => {
+      this.frameHandle = 0;
+      this.renderNow();
+    });
+  }
+
+  renderNow(): void {
+    if (!this.dirty) return;
+    this.dirty = false;
+    this.renderer.render(this.scene, this.camera);
+    this.renders++;
+  }
+
+  dispose(): void {
+    cancelAnimationFrame(this.frameHandle);
+    this.resizeObserver.disconnect();
+    this.controls.dispose();
+    this.renderer.dispose();
+  }
+
+  private resize(): void {
+    const host = this.canvas.parentElement ?? this.canvas;
+    const width = Math.max(1, host.clientWidth);
+    const height = Math.max(1, host.clientHeight);
+    this.renderer.setSize(width, height, false);
+    this.camera.aspect = width / height;
+    this.camera.updateProjectionMatrix();
+    this.requestRender();
+  }
+}
