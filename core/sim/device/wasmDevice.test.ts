@@ -185,6 +185,27 @@ describe('WasmDevice', () => {
     expect(new TextDecoder().decode(Uint8Array.from(sent[0].bytes))).toBe('nprobeB\0');
   });
 
+  it('lets time pass while the firmware busy-waits on micros(), as delay() does', async () => {
+    const s = new VirtualScheduler();
+    const stamps: number[] = [];
+    const hardware: DeviceHardware = { ...UNCONNECTED, digitalWrite: (_p, _v, t) => stamps.push(t) };
+    const { device, sent } = await probeDevice('p', { hardware, busyWaitAfterCalls: 100, busyWaitStep_us: 2 });
+    const runner = new DeviceRunner(s, [device]);
+    runner.start();
+    // 'w' spins until micros() has advanced 5000 µs, then steps: 100 free reads, then 2 µs per read.
+    s.at(10_000, () => runner.deliver(device, new TextEncoder().encode('wA')));
+    await s.runUntil(20_000);
+    expect(stamps[0]).toBeGreaterThanOrEqual(15_000);
+    expect(stamps[0]).toBeLessThan(15_010);
+    // 'w' was answered with the clock before the wait, 'A' with the clock after it.
+    expect(sent).toHaveLength(1);
+    expect(u32(sent[0].bytes, 1)).toBe(10_000);
+    expect(u32(sent[0].bytes, 6)).toBeGreaterThanOrEqual(15_000);
+    expect(u32(sent[0].bytes, 6)).toBeLessThan(15_010);
+    expect(device.time_us).toBeGreaterThanOrEqual(15_000);
+    expect(device.nextLoop_us).toBeGreaterThan(15_000);
+  });
+
   it('refuses modules that import what the ABI does not provide, or lack its exports', async () => {
     // (module (import "env" "bogus" (func)))
     const bogus = new WebAssembly.Module(

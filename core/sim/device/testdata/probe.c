@@ -11,6 +11,7 @@
 //   'l'  show 2 LEDs on pin 6: (1,2,3) (4,5,6)
 //   'p'  servo pulse 1500 µs on pin 9
 //   'n'  answer the probe's name (a string in its data) instead: [n, the name's bytes, NUL]
+//   'w'  busy-wait until micros() has moved 5000 µs (like delay(5)), then step
 //   't'  trap (unreachable)
 //   anything else: echo only
 #include <stdint.h>
@@ -76,6 +77,13 @@ EXPORT(maxl_loop) void loop(void) {
       maxl_led_show(6, rgb, 2);
     }
     if (c == 'p') maxl_servo_pulse(9, 1500);
+    if (c == 'w') {
+      uint32_t start = maxl_micros();
+      while ((uint32_t)(maxl_micros() - start) < 5000) {
+      }
+      maxl_digital_write(2, 1);
+      maxl_digital_write(2, 0);
+    }
     if (c == 't') __builtin_trap();
     if (c == 'n') {
       uint32_t n = 0;
