@@ -219,9 +219,10 @@ export class Streamer {
       const ahead = this.countAhead(now);
       if (this.queue.transmittedEnd_us >= horizon && ahead >= 2) break;
       const start = this.queue.nextStart_us(now + this.startLead_us);
-      // Lock long segments a slice at a time.
-      const reach = horizon + this.options.slice_us - start;
-      if (next.duration_s * 1e6 > reach + this.options.slice_us && reach > 0) {
+      // Lock long segments a slice at a time. When the two-segment minimum asks for a
+      // segment that starts at or past the horizon, lock one slice of it, not all of it.
+      const reach = Math.max(horizon + this.options.slice_us - start, this.options.slice_us);
+      if (next.duration_s * 1e6 > reach + this.options.slice_us) {
         const d = evaluateTiming(next.timing!, reach * 1e-6, { s: 0, v: 0, a: 0 }).s;
         if (d > MIN_SPLIT_MM && d < next.length - MIN_SPLIT_MM) {
           this.queue.splitFront(d);
