@@ -84,42 +84,60 @@ function varintSize(v: number): number {
   return n;
 }
 
+/** At most this fraction of a cruise phase absorbs a clock-model correction. */
+export const MAX_CRUISE_CORRECTION = 0.005;
+
 /**
- * One segment's TIMING entry in the device's clock: its device start (u32), and
- * its end (unwrapped device µs). `startAt` pins the first boundary (the end of the
- * segment before it on the device) so that a contiguous segment stays contiguous
- * even when the clock model has been refitted since; later boundaries never run
- * backwards.
+ * One segment's TIMING entry in the device's clock, its device start (u32), and
+ * its end as an exact (unrounded, unwrapped) device time.
+ *
+ * After rest (no `chainFrom`), the start comes from the clock model. A segment
+ * that continues the device's timed path starts exactly where the previous one
+ * ended (`chainFrom`, exact), and its phases last their author durations times
+ * the model's rate: the profile's shape is never distorted, which matters most
+ * for a phase accelerating from rest, whose entry speed the device derives from
+ * σ(end) = 1. Where the model has moved since (it is refitted every second), the
+ * difference is absorbed a little at a time in cruise phases only, at most
+ * MAX_CRUISE_CORRECTION of each, where stretching just changes the cruise speed by
+ * as much. Boundaries are rounded from the exact chain, so rounding never builds up.
  */
-export function timingEntry(seg: EncodableSegment, clock: ClockMap, startAt?: number): { entry: TimingSegment; start: number; end: number } {
+export function timingEntry(seg: EncodableSegment, clock: ClockMap, chainFrom?: number): { entry: TimingSegment; start: number; end: number } {
   const timing = seg.timing;
   if (timing === null) throw new Error('timingEntry: segment is not timed');
   const phases = timing.length / PHASE_STRIDE;
-  const boundaries: number[] = [];
+  const modelStart = clock.toDeviceExact(seg.startTime_us);
+  let error = chainFrom === undefined ? 0 : modelStart - chainFrom;
+  let exact = chainFrom ?? modelStart;
+  const boundaries = [Math.round(exact)];
   let shape = 0;
   let accel = 0;
-  const at = (t_s: number) => Math.round(clock.toDeviceExact(seg.startTime_us + t_s * 1e6));
   for (let k = 0; k < phases; k++) {
     const o = k * PHASE_STRIDE;
-    boundaries.push(k === 0 && startAt !== undefined ? startAt : Math.max(at(timing[o]), boundaries[k - 1] ?? -Infinity));
+    let duration = timing[o + 1] * 1e6 * clock.rate;
     const a = timing[o + 4];
+    if (a === 0 && error !== 0) {
+      const room = duration * MAX_CRUISE_CORRECTION;
+      const take = Math.max(-room, Math.min(room, error));
+      duration += take;
+      error -= take;
+    }
+    exact += duration;
+    boundaries.push(Math.round(exact));
     shape |= (a > 0 ? PhaseShape.accelerate : a < 0 ? PhaseShape.decelerate : PhaseShape.cruise) << (2 * k);
     if (a !== 0) accel = Math.abs(a);
   }
-  const last = (phases - 1) * PHASE_STRIDE;
-  boundaries.push(Math.max(at(timing[last] + timing[last + 1]), boundaries[phases - 1]));
   const durations = boundaries.slice(1).map((b, k) => b - boundaries[k]);
   // d²σ/dt_dev² = (a/L)·(dt_author/dt_dev)²
   const alpha = seg.length > 0 ? accel / seg.length / (clock.rate * clock.rate) : 0;
   const start = ((boundaries[0] % 0x1_0000_0000) + 0x1_0000_0000) % 0x1_0000_0000;
-  return { entry: { shape, durations, alpha }, start, end: boundaries[phases] };
+  return { entry: { shape, durations, alpha }, start, end: exact };
 }
 
 /**
  * TIMING messages for consecutive, contiguous timed segments. The first carries its
  * start when `withStart` (after rest, or first of a session); otherwise it follows
- * the device's timed path, which ends at `startAt` (unwrapped device µs). The
- * device end of the last one is returned in `end`. `stopDecel` (mm/s², in author
+ * the device's timed path, which ends at `startAt` (exact, unwrapped device µs).
+ * The exact device end of the last one is returned in `end`. `stopDecel` (mm/s², in author
  * time) is how hard a device brakes along provisional geometry if no more timing
  * follows a message's last segment.
  */

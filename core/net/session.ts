@@ -10,6 +10,7 @@
  *    means the device rebooted (and forgot its queue).
  */
 import { MaxlError } from '../errors.ts';
+import { seededRandom } from '../sim/random.ts';
 import type { Scheduler, Timer } from '../time/scheduler.ts';
 import { ClockSync } from './clockSync.ts';
 import { encodeFrame, FrameReceiver, type RawPacket } from './frame.ts';
@@ -386,7 +387,15 @@ export class DeviceSession {
 
   // --- timers ---
 
+  /**
+   * Pings at pingEvery_us on average, each interval drawn uniformly from ±25 % of
+   * it. The dither matters: a link that moves data in fixed slots (USB's 1 ms
+   * frames) adds a wait that depends on when in the slot a ping is sent. Pings at a
+   * fixed period (a multiple of the slot) would all see the same wait, and the
+   * fastest exchanges, which clock sync relies on, would never come.
+   */
   private schedulePing(): void {
+    const random = seededRandom(hashString(this.link.label ?? 'link'));
     const tick = () => {
       if (this.state !== 'open') return;
       // Pings do not queue behind a backlog: a late ping would only add noise.
@@ -395,7 +404,7 @@ export class DeviceSession {
         this.nextPingId = (this.nextPingId % 0xffff) + 1;
         void this.send({ type: 'PING', pingId });
       }
-      this.timers.push(this.scheduler.after(this.options.pingEvery_us, tick));
+      this.timers.push(this.scheduler.after(this.options.pingEvery_us * (0.75 + 0.5 * random()), tick));
     };
     tick();
   }
@@ -434,4 +443,14 @@ export class DeviceSession {
     this.waiting = [];
     this.events.lost?.(reason);
   }
+}
+
+/** A 32-bit FNV-1a hash, to seed a session's dither from its link's label. */
+function hashString(text: string): number {
+  let h = 0x811c9dc5;
+  for (let i = 0; i < text.length; i++) {
+    h ^= text.charCodeAt(i);
+    h = Math.imul(h, 0x01000193) >>> 0;
+  }
+  return h;
 }

@@ -14,10 +14,26 @@ interface Entry {
   cancelled: boolean;
 }
 
-/** Lets every pending promise continuation run (a macrotask turn in Node and browsers). */
-export function settle(): Promise<void> {
-  return new Promise((resolve) => setTimeout(resolve, 0));
-}
+/**
+ * Lets every pending promise continuation run: one macrotask turn, after the
+ * microtask queue has drained. setImmediate where there is one (Node): unlike
+ * setTimeout(0), which Node clamps to 1 ms of real time per call, it costs
+ * microseconds, so an hour of virtual time stays fast. A MessageChannel turn
+ * elsewhere.
+ */
+export const settle: () => Promise<void> =
+  typeof setImmediate === 'function'
+    ? () => new Promise((resolve) => setImmediate(resolve))
+    : (() => {
+        const channel = new MessageChannel();
+        const waiting: Array<() => void> = [];
+        channel.port1.onmessage = () => waiting.shift()?.();
+        return () =>
+          new Promise<void>((resolve) => {
+            waiting.push(resolve);
+            channel.port2.postMessage(0);
+          });
+      })();
 
 export class VirtualScheduler extends BaseScheduler {
   private time: number;
