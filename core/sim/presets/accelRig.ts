@@ -27,7 +27,10 @@ export function accelRig(): MachinePreset {
     },
     devices: [
       { name: 'motorOne', example: 'Stepper', readers: [{ name: 'stepper', kind: 'position' }], clock: { offset_us: 55_555, ppm: 80 } },
-      { name: 'accelerometer', example: 'Accelerometer', readers: [{ name: 'accel', kind: 'sensor' }], clock: { offset_us: 4_000_000_000, ppm: -110 } },
+      // Wraps 46 minutes in. (Below 2³¹ at power-up: the example's first-sample
+      // test, (int32_t)(micros() − 0) < period, holds for up to 36 minutes on a
+      // board whose counter starts above 2³¹; see core/sim/README.md.)
+      { name: 'accelerometer', example: 'Accelerometer', readers: [{ name: 'accel', kind: 'sensor' }], clock: { offset_us: 1_500_000_000, ppm: -110 } },
     ],
     plant: {
       motors: [{ device: 'motorOne', name: 'x', stepPin: 2, dirPin: 5, stepsPerMm: 80 }],
