@@ -73,7 +73,9 @@ export class JogController {
     if (!maxl) return;
     this.holding = null;
     const now = maxl.scheduler.now();
-    const release_us = now - Math.max(0, epochNow() - releasedAt_ms) * 1000;
+    const delivery_ms = Math.max(0, epochNow() - releasedAt_ms);
+    const release_us = now - delivery_ms * 1000;
+    const lockedAhead_ms = Math.max(0, maxl.queue.transmittedEnd_us - now) / 1000;
     const speed = maxl.sample(release_us).speed;
     const cancelled = maxl.cancel();
     // cancel() has planned the stop synchronously: braking starts where the locked path ends.
@@ -85,6 +87,9 @@ export class JogController {
       brakeLatency_ms: (brakeStart_us - release_us) / 1000,
       restLatency_ms: (rest_us - release_us) / 1000,
       braking_ms: (rest_us - brakeStart_us) / 1000,
+      delivery_ms,
+      lockedAhead_ms,
+      lead_ms: maxl.lead_us / 1000,
     });
   }
 

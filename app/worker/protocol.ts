@@ -132,6 +132,12 @@ export interface JogStopReport {
   restLatency_ms: number;
   /** ms the braking itself takes at the acceleration limit */
   braking_ms: number;
+  /** ms from the release until the worker had the stop (page → worker message) */
+  delivery_ms: number;
+  /** ms of motion the streamer kept locked ahead then (2·RTT + margin, plus a slice) */
+  lockedAhead_ms: number;
+  /** the streamer's lead, ms */
+  lead_ms: number;
 }
 
 export type JobPattern = 'square' | 'spiral' | 'zigzag';

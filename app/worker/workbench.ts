@@ -38,6 +38,15 @@ interface DeviceConnection {
   info: DeviceInfo | null;
 }
 
+/**
+ * Streaming margins for real time in a browser worker. The core's defaults (1 ms
+ * of margin) suit virtual time; here timers fire late by several ms whenever the
+ * worker is busy (and the simulated devices share that worker), and segments then
+ * arrive too late to run. 20 ms keeps the stream ahead; the cost is that a
+ * hold-to-jog release brakes about 2·RTT + 20 ms later.
+ */
+const REAL_TIME_STREAMER = { minLead_us: 20_000, leadMargin_us: 20_000, startMargin_us: 20_000 };
+
 /** Device reports go to the page at most this often, ms. */
 const DEVICE_REPORT_MS = 250;
 
@@ -236,7 +245,7 @@ export class Workbench {
     if (this.origin.length !== axes) this.origin = new Array<number>(axes).fill(0);
     let maxl: Maxl;
     try {
-      maxl = createMAXL(this.config, { links: this.devices.map((d) => d.port.session()), initialPosition: this.position, scheduler: this.scheduler });
+      maxl = createMAXL(this.config, { links: this.devices.map((d) => d.port.session()), initialPosition: this.position, scheduler: this.scheduler, streamer: REAL_TIME_STREAMER });
     } catch (err) {
       const words = errorWords(err);
       this.setPhase('not-ready', words.message);
