@@ -5,7 +5,7 @@
  */
 import { encodeFrame, FrameReceiver } from '../../net/frame.ts';
 import type { Link } from '../../net/link.ts';
-import { decodePayload, type Message, type WireError } from '../../net/messages.ts';
+import { decodePayload, WireError, type Message } from '../../net/messages.ts';
 import type { Scheduler } from '../../time/scheduler.ts';
 
 export interface Received {
@@ -25,17 +25,30 @@ export class FrameClient {
   constructor(
     private readonly scheduler: Scheduler,
     readonly link: Link,
-    /** Sample channels for decoding SAMPLES. */
-    channels = 3,
+    options: {
+      /** Sample channels for decoding SAMPLES (default 3). */
+      channels?: number;
+      /** Keep what arrives in `received`, `bytes` and `arrivals` (default true; benchmarks turn it off). */
+      keep?: boolean;
+      /** Called with each decoded message as it arrives. */
+      onMessage?: (r: Received) => void;
+    } = {},
   ) {
+    const channels = options.channels ?? 3;
+    const keep = options.keep ?? true;
     this.writer = link.writable.getWriter();
     const receiver = new FrameReceiver(
       (p) => {
+        let r: Received;
         try {
-          this.received.push({ t_us: scheduler.now(), seq: p.seq, message: decodePayload(p.typeCode, p.payload, { positionSlots: 0, channels }, p.seq) });
+          r = { t_us: scheduler.now(), seq: p.seq, message: decodePayload(p.typeCode, p.payload, { positionSlots: 0, channels }, p.seq) };
         } catch (error) {
-          this.errors.push({ t_us: scheduler.now(), error: error as WireError });
+          if (!(error instanceof WireError)) throw error;
+          this.errors.push({ t_us: scheduler.now(), error });
+          return;
         }
+        if (keep) this.received.push(r);
+        options.onMessage?.(r);
       },
       (error) => this.errors.push({ t_us: scheduler.now(), error }),
     );
@@ -44,8 +57,10 @@ export class FrameClient {
       for (;;) {
         const { value, done } = await reader.read();
         if (done) return;
-        this.arrivals.push({ t_us: scheduler.now(), length: value.length });
-        for (const b of value) this.bytes.push(b);
+        if (keep) {
+          this.arrivals.push({ t_us: scheduler.now(), length: value.length });
+          for (const b of value) this.bytes.push(b);
+        }
         receiver.push(value);
       }
     })();
