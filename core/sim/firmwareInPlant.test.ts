@@ -22,7 +22,7 @@ async function machine(id: string) {
   return { s, sim };
 }
 
-describe.skipIf(!built)('firmware driving the plant', () => {
+describe.skipIf(!built)(`firmware driving the plant${built ? '' : ` (skipped: Stepper, Accelerometer, BlotPlotter, LightPainter .wasm not built in ${firmwareDir})`}`, () => {
   it('Stepper: a 10 mm segment at 20 mm/s makes 800 steps, on time', async () => {
     const { s, sim } = await machine('accelRig');
     const motor = new DeviceDriver(s, sim, 'motorOne');

@@ -44,6 +44,8 @@ export interface SimulatedMachineOptions {
   chunk_us?: number;
   /** Keep each device's last N outputs (default 0). */
   outputLogSize?: number;
+  /** Record the tool's true state every this many µs in plant.trace (default: the preset's, usually off). */
+  toolTracePeriod_us?: number;
   /** Gets errors raised while devices run on the runner's timer (firmware traps). Default: thrown from the timer. */
   onError?: (error: unknown) => void;
 }
@@ -86,7 +88,8 @@ export async function createSimulatedMachine(
     if (!names.includes(name)) throw new SimError('SIM_CONFIG', `preset ${preset.id} has no device "${name}" (devices: ${names.join(', ')})`);
   }
 
-  const plant = new Plant(preset.plant, { seed, start_us: scheduler.now() });
+  const plantConfig = options.toolTracePeriod_us ? { ...preset.plant, toolTrace: { period_us: options.toolTracePeriod_us } } : preset.plant;
+  const plant = new Plant(plantConfig, { seed, start_us: scheduler.now() });
   const modules = await Promise.all(preset.devices.map((d) => options.loader(d.example)));
   const simLinks: Record<string, SimulatedLink> = {};
   const devices: Record<string, WasmDevice> = {};
