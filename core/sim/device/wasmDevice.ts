@@ -116,7 +116,6 @@ export class WasmDevice {
   private constructor(
     readonly options: WasmDeviceOptions,
     instance: WebAssembly.Instance,
-    memoryRef: { memory: WebAssembly.Memory | null },
   ) {
     this.clock = new DeviceClock(options.clock);
     this.loopPeriod_us = options.loopPeriod_us ?? 20;
@@ -127,12 +126,10 @@ export class WasmDevice {
     this.busyWaitAfterCalls = options.busyWaitAfterCalls ?? 200;
     this.busyWaitStep_us = options.busyWaitStep_us ?? 1;
     this.exports = resolveExports(instance, options.name);
-    memoryRef.memory = this.exports.memory;
   }
 
   /** Instantiates `module` with the ABI's imports wired to this device. Call start() next. */
   static async instantiate(module: WebAssembly.Module, options: WasmDeviceOptions): Promise<WasmDevice> {
-    const memoryRef: { memory: WebAssembly.Memory | null } = { memory: null };
     let device: WasmDevice | null = null;
     const self = () => {
       if (!device) throw new SimError('WASM_ABI', `${options.name}: the firmware called the simulator before it was instantiated`);
@@ -150,7 +147,7 @@ export class WasmDevice {
       (imports[imp.module] ??= {})[imp.name] = fn;
     }
     const instance = await WebAssembly.instantiate(module, imports);
-    device = new WasmDevice(options, instance, memoryRef);
+    device = new WasmDevice(options, instance);
     return device;
   }
 
