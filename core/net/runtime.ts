@@ -189,8 +189,16 @@ export class Runtime {
   async halt(): Promise<void> {
     this.halted = true;
     this.streamer?.stop();
-    this.host.queue.cancelAll();
-    await Promise.all(this.sessions.filter((s) => s.state === 'open').map((s) => s.send({ type: 'HALT', mode: 0, at: 0 })));
+    // HALT goes out first: nothing the author's queue does may delay or prevent it.
+    const halts = Promise.all(this.sessions.filter((s) => s.state === 'open').map((s) => s.send({ type: 'HALT', mode: 0, at: 0 })));
+    try {
+      this.host.queue.cancelAll();
+    } catch (err) {
+      // The queue refuses to drop a path it could not brake along; after HALT every
+      // device stands still where it is, so that check does not apply. Nothing more streams.
+      if (!(err instanceof MaxlError && err.code === 'CANNOT_STOP_IN_PATH')) throw err;
+    }
+    await halts;
   }
 
   /** Ends every session. */
