@@ -195,3 +195,86 @@ TEST(Session, HelloRequestDropsSubscriptions) {
   h.exchange(h.author.helloRequest());
   EXPECT_FALSE(ev.subscribed());
 }
+
+// The device's receive and transmit buffers are one (device.h): a STATUS due
+// while a frame is half-received must wait, not overwrite it.
+TEST(Session, FramesArrivingByteByByteSurviveStatusReports) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  std::vector<int32_t> p0 = {0};
+  std::vector<GeometrySegment> geometry;
+  for (int k = 0; k < 6; k++) geometry.push_back({1.0f, {65536 * (k + 1)}});
+  Bytes g = h.author.geometry(0, &p0, geometry, 1);
+  msg::TimingSegment cruise{};
+  cruise.shape = phase::CRUISE;
+  cruise.phaseCount = 1;
+  cruise.durations[0] = 300000;
+  uint32_t start = 10000000;  // far ahead: running (waiting), so STATUS every 100 ms
+  Bytes t0 = h.author.timing(0, 1000.0f, &start, {cruise, cruise});
+  Bytes t1 = h.author.timing(2, 1000.0f, nullptr, {cruise, cruise, cruise});
+  h.take();
+  uint32_t now = 500;
+  int statuses = 0;
+  std::vector<Answer> answers;
+  for (const Bytes* f : {&g, &t0, &t1}) {
+    for (uint8_t b : *f) {  // one byte every 40 µs, a loop() after each
+      now += 40;
+      h.at(now);
+      maxl_fw::host::pushRx(&b, 1);
+      h.loop();
+      for (const Packet& p : h.take()) {
+        if (p.type == type::STATUS) statuses++;
+        if (p.type == type::ACK || p.type == type::NACK) answers.push_back(answerOf(p));
+      }
+    }
+    now += 99000;  // the next periodic STATUS falls due about 25 bytes into the next frame
+  }
+  ASSERT_EQ(answers.size(), 3u);
+  for (const Answer& a : answers) EXPECT_EQ(a.reason, 0) << "seq " << (int)a.seq << " detail " << a.detail;
+  EXPECT_GE(statuses, 1);
+  EXPECT_EQ(h.device->motion().queue().timed(), 5);
+}
+
+// Paced reports (MAXL_TX_BYTES_PER_LOOP, on by default on AVR): a STATUS goes
+// out a few bytes per loop(), and anything else that must be written, or a
+// byte arriving, first finishes it.
+TEST(Session, PacedStatusGoesOutInPiecesAndIsFlushedByTraffic) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  std::vector<int32_t> p0 = {0};
+  msg::TimingSegment cruise{};
+  cruise.shape = phase::CRUISE;
+  cruise.phaseCount = 1;
+  cruise.durations[0] = 300000;
+  uint32_t start = 10000000;
+  EXPECT_EQ(h.exchange(h.author.geometry(0, &p0, {{1.0f, {65536}}}, 1)).reason, 0);
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {cruise})).reason, 0);
+  h.loop();
+  h.take();
+  // Running (waiting for the start): the next periodic STATUS, paced at 2 bytes per loop.
+  h.device->setTransmitPacing(2);
+  h.loopAt(h.now() + 100000);
+  EXPECT_EQ(maxl_fw::host::txLength(), 2u);
+  h.loop();
+  EXPECT_EQ(maxl_fw::host::txLength(), 4u);
+  EXPECT_FALSE(h.device->idle());
+  // A frame arrives: the rest of the STATUS goes first, then the frame's
+  // reply (another STATUS, paced too, finished by the ACK that follows it).
+  h.send(h.author.statusRequest());
+  std::vector<Packet> p = h.take();
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_EQ(p[0].type, type::STATUS);
+  EXPECT_EQ(p[1].type, type::STATUS);
+  EXPECT_EQ(p[2].type, type::ACK);
+  msg::Status s;
+  ASSERT_TRUE(msg::parse(p[0].payload.data(), (uint8_t)p[0].payload.size(), s));
+  EXPECT_EQ(s.state, state::RUNNING);
+  // Left alone, a paced frame finishes over the following loops.
+  h.loopAt(h.now() + 100000);
+  for (int i = 0; i < 20; i++) h.loop();
+  p = h.take();
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0].type, type::STATUS);
+}

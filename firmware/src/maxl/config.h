@@ -73,6 +73,18 @@
 #define MAXL_STATUS_PERIOD_US 100000UL
 #endif
 
+// Bytes of a STATUS or SAMPLES frame handed to the serial port per loop()
+// (0: the whole frame at once). Pacing keeps one loop() short, so steps stay
+// on time while a report goes out. Replies to the author's frames are always
+// written at once.
+#ifndef MAXL_TX_BYTES_PER_LOOP
+#if defined(__AVR__)
+#define MAXL_TX_BYTES_PER_LOOP 2
+#else
+#define MAXL_TX_BYTES_PER_LOOP 0
+#endif
+#endif
+
 // Serial rate used by MAXL_Device::begin(port) when none is given. 250 000
 // baud is exact at 16 MHz; native-USB boards ignore it.
 #ifndef MAXL_DEFAULT_BAUD

@@ -25,7 +25,11 @@ MAXL_Device::MAXL_Device(const char* name)
       lastState_(state::IDLE),
       begun_(false),
       velocityValid_(false),
-      accelerationValid_(false) {
+      accelerationValid_(false),
+      statusPending_(false),
+      txPacing_(MAXL_TX_BYTES_PER_LOOP),
+      txSent_(0),
+      txLength_(0) {
   instance_ = this;
   for (uint8_t i = 0; i < MAXL_EVENT_SLOTS; i++) eventTracks_[i].active = false;
 }
@@ -50,10 +54,12 @@ void MAXL_Device::resetSession() {
   for (MAXL_Reader* r = MAXL_Reader::first(); r; r = r->next()) r->unbind();
   flags_ = 0;
   lastState_ = motion_.statusState();
+  statusPending_ = false;
 }
 
 void MAXL_Device::loop() {
   if (!begun_) return;
+  pumpTransmit();
   pollLink();
   now_ = hal::micros();
   motion_.tick(now_);
@@ -90,19 +96,24 @@ void MAXL_Device::fireEvents() {
   }
 }
 
-// STATUS on every state change, and every MAXL_STATUS_PERIOD_US while not idle.
+// STATUS on every state change, and every MAXL_STATUS_PERIOD_US while not
+// idle. The transmit buffer is also the receive buffer (device.h): while a
+// frame is arriving the STATUS waits, and goes out once it is complete
+// (pollLink() stops after each frame, so there is a moment between frames).
 void MAXL_Device::reportStatus() {
   if (!session_.active()) return;
   uint8_t s = motion_.statusState();
   if (s != lastState_) {
     lastState_ = s;
-    sendStatus();
+    statusPending_ = true;
   } else if (s != state::IDLE && timeDiff(now_, lastStatusAt_) >= (int32_t)MAXL_STATUS_PERIOD_US) {
-    sendStatus();
+    statusPending_ = true;
   }
+  if (statusPending_ && !rx_.inFrame() && txLength_ == 0) sendStatus();
 }
 
 bool MAXL_Device::idle() const {
+  if (txLength_ || statusPending_) return false;
   if (motion_.statusState() != state::IDLE || motion_.queue().timed() > 0 || events_.count() > 0) return false;
   for (const MAXL_Reader* r = MAXL_Reader::first(); r; r = r->next())
     if (r->subscribed() && r->kind() == kind::SENSOR) return false;

@@ -60,8 +60,13 @@ class MAXL_Device {
   int32_t positionUnits(uint8_t slot) const { return motion_.position(slot); }
   float velocity();      // path speed at now(), mm/s
   float acceleration();  // path acceleration at now(), mm/s²
-  void sendSamples(uint8_t reader, uint16_t sampleSeq, uint8_t count, uint32_t t0, const uint8_t* bytes,
+  // False (nothing sent; try again later) while a frame is being received.
+  bool sendSamples(uint8_t reader, uint16_t sampleSeq, uint8_t count, uint32_t t0, const uint8_t* bytes,
                    uint8_t length);
+
+  // Bytes of a STATUS or SAMPLES frame written per loop() (0: all at once);
+  // the default is MAXL_TX_BYTES_PER_LOOP.
+  void setTransmitPacing(uint8_t bytesPerLoop) { txPacing_ = bytesPerLoop; }
 
   static MAXL_Device* instance() { return instance_; }
   const maxl_fw::Motion& motion() const { return motion_; }
@@ -97,6 +102,9 @@ class MAXL_Device {
   void sendStatus();
   maxl_fw::ByteWriter& beginFrame(uint8_t type);
   void sendFrame();
+  void sendFramePaced();
+  void pumpTransmit();
+  void flushTransmit();
 
   // handlers (device_handlers.cpp)
   Answer handle(uint8_t type, const uint8_t* payload, uint8_t length);
@@ -138,6 +146,10 @@ class MAXL_Device {
   bool begun_;
   bool velocityValid_;
   bool accelerationValid_;
+  bool statusPending_;  // a STATUS is due but a frame was arriving
+  uint8_t txPacing_;
+  uint8_t txSent_;      // bytes of the paced frame in frameBuffer_ already written
+  uint8_t txLength_;    // its length; 0 when nothing is pending
 };
 
 #endif

@@ -13,16 +13,24 @@ namespace {
 const uint8_t BYTES_PER_LOOP = 32;
 }  // namespace
 
+// Reads link bytes until a frame ends (or none are left, or BYTES_PER_LOOP),
+// so that loop() gets a moment between frames to send its own (see
+// reportStatus()).
 void MAXL_Device::pollLink() {
   for (uint8_t i = 0; i < BYTES_PER_LOOP; i++) {
     int16_t b = hal::readByte();
     if (b < 0) return;
+    flushTransmit();  // the byte will land in the buffer a paced frame is in
     // PONG.rxTime is the clock when the delimiter was read.
     FrameReceiver::Result r = rx_.push((uint8_t)b, b == 0 ? hal::micros() : 0);
-    if (r == FrameReceiver::PACKET)
+    if (r == FrameReceiver::PACKET) {
       onPacket();
-    else if (r == FrameReceiver::ERROR)
+      return;
+    }
+    if (r == FrameReceiver::ERROR) {
       onFrameError(rx_.error());
+      return;
+    }
   }
 }
 
@@ -148,20 +156,53 @@ void MAXL_Device::sendStatus() {
   s.depth = motion_.queue().count();
   s.flags = flags_;
   msg::write(beginFrame(type::STATUS), s);
-  sendFrame();
+  sendFramePaced();
   lastStatusAt_ = now_;
+  statusPending_ = false;
 }
 
-void MAXL_Device::sendSamples(uint8_t reader, uint16_t sampleSeq, uint8_t count, uint32_t t0, const uint8_t* bytes,
+bool MAXL_Device::sendSamples(uint8_t reader, uint16_t sampleSeq, uint8_t count, uint32_t t0, const uint8_t* bytes,
                               uint8_t length) {
+  if (rx_.inFrame()) return false;  // the buffer holds a frame being received
   ByteWriter& w = beginFrame(type::SAMPLES);
   msg::writeSamplesHeader(w, reader, sampleSeq, count, t0);
   for (uint8_t i = 0; i < length; i++) w.u8(bytes[i]);
-  sendFrame();
+  sendFramePaced();
+  return true;
 }
 
-ByteWriter& MAXL_Device::beginFrame(uint8_t t) { return tx_.begin(txSeq_++, t); }
+// Every frame is built in frameBuffer_, so a paced frame still going out is
+// finished first.
+ByteWriter& MAXL_Device::beginFrame(uint8_t t) {
+  flushTransmit();
+  return tx_.begin(txSeq_++, t);
+}
 
 void MAXL_Device::sendFrame() {
   if (tx_.finish()) hal::write(tx_.frame(), tx_.frameLength());
+}
+
+// Unsolicited frames (STATUS, SAMPLES) leave MAXL_TX_BYTES_PER_LOOP bytes per
+// loop(), so that no single loop() spends the ~100 µs a whole frame costs on
+// an AVR (steps would come late).
+void MAXL_Device::sendFramePaced() {
+  if (!tx_.finish()) return;
+  txSent_ = 0;
+  txLength_ = tx_.frameLength();
+  pumpTransmit();
+}
+
+void MAXL_Device::pumpTransmit() {
+  if (!txLength_) return;
+  uint8_t n = txPacing_ ? txPacing_ : txLength_;
+  if (n > txLength_ - txSent_) n = (uint8_t)(txLength_ - txSent_);
+  hal::write(tx_.frame() + txSent_, n);
+  txSent_ = (uint8_t)(txSent_ + n);
+  if (txSent_ >= txLength_) txLength_ = 0;
+}
+
+void MAXL_Device::flushTransmit() {
+  if (!txLength_) return;
+  hal::write(tx_.frame() + txSent_, (uint8_t)(txLength_ - txSent_));
+  txLength_ = 0;
 }

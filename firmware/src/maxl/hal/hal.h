@@ -19,10 +19,34 @@
 class Stream;
 #endif
 
+#if MAXL_HAL_ARDUINO && defined(__AVR__) && F_CPU == 16000000L
+// The Arduino core's Timer 0 overflow counter (wiring.c), for an inline micros().
+#include <avr/interrupt.h>
+#include <avr/io.h>
+extern "C" volatile unsigned long timer0_overflow_count;
+#define MAXL_INLINE_MICROS 1
+#endif
+
 namespace maxl_fw {
 namespace hal {
 
+#if MAXL_INLINE_MICROS
+// The core's micros() at 16 MHz, inline: it is read on every loop(), and the
+// call costs more than the work (55 cycles to ~30). Timer 0 runs at clk/64,
+// so one count is 4 µs: micros = (overflows·256 + TCNT0)·4, counting an
+// overflow that is pending but not yet handled.
+inline __attribute__((always_inline)) uint32_t micros() {
+  uint8_t sreg = SREG;
+  cli();
+  uint32_t m = timer0_overflow_count;
+  uint8_t t = TCNT0;
+  if ((TIFR0 & _BV(TOV0)) && t < 255) m++;
+  SREG = sreg;
+  return ((m << 8) | t) << 2;
+}
+#else
 uint32_t micros();
+#endif
 int16_t readByte();
 void write(const uint8_t* data, uint8_t length);
 
@@ -46,7 +70,22 @@ struct OutputPin {
   bool valid;
 };
 void makeOutput(OutputPin& pin, uint8_t number);
+#if MAXL_HAL_ARDUINO && defined(__AVR__)
+// Inline on AVR: step pulses write it twice per step. The port is shared with
+// other pins, so the read-modify-write keeps interrupts out.
+inline __attribute__((always_inline)) void writePin(const OutputPin& pin, bool high) {
+  if (!pin.valid) return;
+  uint8_t sreg = SREG;
+  cli();
+  if (high)
+    *pin.port |= pin.mask;
+  else
+    *pin.port &= (uint8_t)~pin.mask;
+  SREG = sreg;
+}
+#else
 void writePin(const OutputPin& pin, bool high);
+#endif
 
 // Holds a step pulse high long enough for common drivers (~2 µs on a real
 // board; nothing in virtual time).

@@ -13,7 +13,9 @@ namespace {
 Stream* link = 0;
 }
 
+#if !MAXL_INLINE_MICROS
 uint32_t micros() { return ::micros(); }
+#endif
 
 int16_t readByte() {
   if (!link) return -1;
@@ -41,21 +43,11 @@ void makeOutput(OutputPin& pin, uint8_t number) {
 #endif
 }
 
+#if !defined(__AVR__)
 void writePin(const OutputPin& pin, bool high) {
-  if (!pin.valid) return;
-#if defined(__AVR__)
-  // Read-modify-write of a port shared with other pins: keep ISRs out of it.
-  uint8_t sreg = SREG;
-  cli();
-  if (high)
-    *pin.port |= pin.mask;
-  else
-    *pin.port &= (uint8_t)~pin.mask;
-  SREG = sreg;
-#else
-  digitalWrite(pin.number, high ? HIGH : LOW);
-#endif
+  if (pin.valid) digitalWrite(pin.number, high ? HIGH : LOW);
 }
+#endif
 
 void stepPulseWait() { delayMicroseconds(2); }
 void directionSetupWait() { delayMicroseconds(1); }

@@ -35,13 +35,16 @@
 
 namespace maxl_fw {
 
+// The hot path must be inlined even under the Arduino build's -Os.
+#define MAXL_HOT inline __attribute__((always_inline))
+
 // floor(a·x / 2^16) for a signed 32-bit a and an unsigned 16-bit x. The
 // product fits in 48 bits, so the result fits in 32.
 //
 // Portable form: split a = h·2^16 + l (h signed, l unsigned 16-bit); then
 // a·x/2^16 = h·x + l·x/2^16, and since h·x is an integer,
 // floor(a·x/2^16) = h·x + floor(l·x/2^16), which is exact.
-inline int32_t mulhi16Portable(int32_t a, uint16_t x) {
+MAXL_HOT int32_t mulhi16Portable(int32_t a, uint16_t x) {
   int32_t h = (int32_t)(int16_t)((uint32_t)a >> 16);
   uint32_t l = (uint16_t)a;
   return (int32_t)((uint32_t)(h * (int32_t)x) + ((l * x) >> 16));
@@ -52,7 +55,7 @@ inline int32_t mulhi16Portable(int32_t a, uint16_t x) {
 // form into four full 32×32 multiplies (~450 cycles); this is eight MULs.
 // The 48-bit product is accumulated in r18..r23 (bytes 0..5); bytes 2..5
 // are the result. a = a3:a2:a1:a0 (a3 signed), x = x1:x0.
-inline int32_t mulhi16(int32_t a, uint16_t x) {
+MAXL_HOT int32_t mulhi16(int32_t a, uint16_t x) {
   int32_t result;
   uint8_t b0, b1, zero;
   __asm__(
@@ -107,7 +110,7 @@ inline int32_t mulhi16(int32_t a, uint16_t x) {
   return result;
 }
 #else
-inline int32_t mulhi16(int32_t a, uint16_t x) { return mulhi16Portable(a, x); }
+MAXL_HOT int32_t mulhi16(int32_t a, uint16_t x) { return mulhi16Portable(a, x); }
 #endif
 
 // One position track inside the current phase (see the top of this file).
@@ -117,7 +120,7 @@ struct FixedTrack {
   int32_t C;
 
   // Position x µs after the chunk start, x < 2^16.
-  int32_t at(uint16_t x) const {
+  MAXL_HOT int32_t at(uint16_t x) const {
     int32_t w = (int32_t)((uint32_t)B + (uint32_t)mulhi16(C, x));
     return (int32_t)((uint32_t)P + (uint32_t)mulhi16(w, x));
   }

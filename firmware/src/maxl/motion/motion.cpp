@@ -76,7 +76,8 @@ bool Motion::timingEnd(uint32_t& end) const {
 
 // ------------------------------------------------------------------ tick
 
-void Motion::tick(uint32_t now) {
+// The slow path of tick(): everything but "inside the current phase".
+void Motion::advance(uint32_t now) {
   // Each pass either evaluates and returns, or crosses one boundary that is
   // not after `now` (a phase, a segment, a brake piece); the queue is finite.
   for (;;) {
@@ -127,12 +128,22 @@ void Motion::tick(uint32_t now) {
 // phase or brake piece.
 void Motion::evaluate(uint32_t now) {
   uint32_t x = now - chunkStart_;
+  if (x >> 16) x = nextChunks(x);  // once every 65 ms at most
+  uint16_t x16 = (uint16_t)x;
+  const FixedTrack* track = track_;
+  int32_t* pos = pos_;
+  for (uint8_t n = activeSlots_; n; n--) *pos++ = (track++)->at(x16);
+}
+
+// Moves the chunk start on by whole 2^16 µs until `x` (µs since it) is below
+// 2^16; returns the new x.
+__attribute__((noinline)) uint32_t Motion::nextChunks(uint32_t x) {
   while (x >= 65536UL) {
     for (uint8_t i = 0; i < activeSlots_; i++) track_[i].nextChunk();
     chunkStart_ += 65536UL;
     x -= 65536UL;
   }
-  for (uint8_t i = 0; i < activeSlots_; i++) pos_[i] = track_[i].at((uint16_t)x);
+  return x;
 }
 
 // Moves every slot's chunk start to t (>= chunkStart_), keeping position and
@@ -393,9 +404,29 @@ void Motion::where(uint32_t now, uint16_t& segmentId, float& sigma) {
     sigma = lastSigma_;
     return;
   }
+  segmentId = queue_.headId();
+  // Cheap form while running: σ = (p − p0)/Δ on the slot that moves most,
+  // from the fixed-point position of the last tick (one float division on an
+  // AVR instead of the phase walk below; STATUS runs in loop() at speed).
+  if (mode_ == RUNNING && !floatValid_) {
+    const Segment& s = queue_.head();
+    float best = 0.0f, moved = 0.0f;
+    for (uint8_t i = 0; i < activeSlots_; i++) {
+      float delta = deltaOf(base_[i], s.p1[i]);
+      if (fabsf(delta) > fabsf(best)) {
+        best = delta;
+        moved = deltaOf(base_[i], pos_[i]);
+      }
+    }
+    if (fabsf(best) >= 65536.0f) {  // at least 1 mm of travel: σ to better than 1e-5
+      sigma = moved / best;
+      if (sigma < 0.0f) sigma = 0.0f;
+      if (sigma > 1.0f) sigma = 1.0f;
+      return;
+    }
+  }
   refreshFloatPhase();
   float tau = clampedSeconds(now, phaseStart_, phaseEnd_);
-  segmentId = queue_.headId();
   sigma = phaseSigma_ + tau * (phaseNu_ + 0.5f * phaseAcc_ * tau);
   if (sigma < 0.0f) sigma = 0.0f;
   if (sigma > 1.0f) sigma = 1.0f;

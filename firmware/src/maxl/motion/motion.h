@@ -34,8 +34,15 @@ class Motion {
   // New session: empty queue, positions unknown, no timing history.
   void reset();
 
-  // Advances to `now` (wrap-safe) and evaluates every active slot.
-  void tick(uint32_t now);
+  // Advances to `now` (wrap-safe) and evaluates every active slot. The common
+  // case, inside the current phase, is inline: one comparison, then evaluate().
+  inline __attribute__((always_inline)) void tick(uint32_t now) {
+    if (mode_ == RUNNING && !haltPending_ && (int32_t)(now - phaseEnd_) < 0) {
+      evaluate(now);
+      return;
+    }
+    advance(now);
+  }
 
   // ---- state
   Mode mode() const { return mode_; }
@@ -96,8 +103,10 @@ class Motion {
   void finishBrakePiece(uint32_t t);
   void brakeFromHalt(uint32_t t);
   void stopHere(uint16_t segmentId, float sigma);
+  void advance(uint32_t now);
   void moveChunkTo(uint32_t t);
   void evaluate(uint32_t now);
+  uint32_t nextChunks(uint32_t x);
   void refreshFloatPhase();
 
   SegmentQueue queue_;

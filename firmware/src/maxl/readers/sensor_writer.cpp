@@ -21,7 +21,7 @@ bool MAXL_SensorWriter::writeAt(uint32_t deviceTime, const float* values) {
   uint32_t dt = count_ ? deviceTime - last_ : 0;
   uint8_t size = (uint8_t)(maxl_fw::ByteWriter::varintSize(dt) + 4 * channels());
   if (count_ && (used_ + size > SPACE || count_ == 255)) {
-    flush();
+    if (!flush()) return false;
     dt = 0;
     size = (uint8_t)(1 + 4 * channels());
   }
@@ -36,13 +36,14 @@ bool MAXL_SensorWriter::writeAt(uint32_t deviceTime, const float* values) {
   return true;
 }
 
-void MAXL_SensorWriter::flush() {
-  if (count_ == 0) return;
+bool MAXL_SensorWriter::flush() {
+  if (count_ == 0) return true;
   MAXL_Device* device = MAXL_Device::instance();
-  if (device) device->sendSamples(index(), sequence_, count_, t0_, bytes_, used_);
+  if (device && !device->sendSamples(index(), sequence_, count_, t0_, bytes_, used_)) return false;
   sequence_++;
   used_ = 0;
   count_ = 0;
+  return true;
 }
 
 void MAXL_SensorWriter::onTick(MAXL_Device& device) {

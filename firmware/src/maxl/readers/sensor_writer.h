@@ -22,10 +22,13 @@ class MAXL_SensorWriter : public MAXL_Reader {
  public:
   MAXL_SensorWriter(const char* name, uint8_t channels);
 
+  // False if the sample could not be kept: not subscribed, or the batch is
+  // full and cannot go out yet (a frame is arriving on the link).
   bool write(const float* values);
   // With an explicit device time (e.g. when the sample was taken earlier).
   bool writeAt(uint32_t deviceTime, const float* values);
-  void flush();
+  // Sends the batch; false if it must wait (it is retried from loop()).
+  bool flush();
 
   uint16_t batchesSent() const { return sequence_; }
 

@@ -4,11 +4,13 @@
 // half a step of n·s, s = 65536 / stepsPerUnit units per step:
 //   n = floor(p/s + 1/2), i.e. (n − 1/2)·s <= p < (n + 1/2)·s.
 // So one step up is due when p reaches (n + 1/2)·s, one down when p falls
-// below (n − 1/2)·s. Both thresholds are kept in Q16 (int64) and, for the
-// per-evaluation check, as their ceilings in whole units: then "is a step
-// due?" is two 32-bit compares, and an evaluation that moved p by k steps
-// emits all k of them (the paper's prototype emitted at most one per call,
-// capping the step rate at the loop rate).
+// below (n − 1/2)·s. The upper threshold is kept exactly, as whole units plus
+// a 16-bit fraction (s is too: sWhole + sFrac/2^16), and both thresholds as
+// their ceilings in whole units, since p is whole: p >= x  <=>  p >= ceil(x),
+// and p < x  <=>  p < ceil(x). Then "is a step due?" is two 32-bit compares,
+// a step moves the thresholds with 32-bit additions, and an evaluation that
+// moved p by k steps emits all k (the paper's prototype emitted at most one
+// per call, capping the step rate at the loop rate).
 #ifndef MAXL_READERS_STEP_GENERATOR_H
 #define MAXL_READERS_STEP_GENERATOR_H
 
@@ -44,10 +46,12 @@ class MAXL_StepGenerator {
   bool begun_;
   int8_t direction_;  // last direction written: +1, -1, or 0 before the first step
   float stepsPerUnit_;
-  int64_t stepQ_;     // s in Q16: units per step · 2^16
-  int64_t upQ_;       // (n + 1/2)·s in Q16
-  int32_t upCeil_;    // ceil(upQ_ / 2^16)
-  int32_t downCeil_;  // ceil((upQ_ − stepQ_) / 2^16)
+  int32_t sWhole_;    // s = sWhole_ + sFrac_ / 2^16 units per step
+  uint16_t sFrac_;
+  int32_t upWhole_;   // (n + 1/2)·s = upWhole_ + upFrac_ / 2^16
+  uint16_t upFrac_;
+  int32_t upCeil_;    // ceil((n + 1/2)·s)
+  int32_t downCeil_;  // ceil((n − 1/2)·s)
   int32_t steps_;
 };
 

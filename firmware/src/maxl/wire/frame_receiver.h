@@ -16,7 +16,8 @@
 //
 // The packet is decoded into a buffer the caller owns (FRAME_BUFFER_SIZE
 // bytes), so that a device can send its replies from the same buffer once it
-// has read the packet: 66 bytes of RAM instead of 130 on a 2 KB board.
+// has read the packet: 66 bytes of RAM instead of 130 on a 2 KB board. Then
+// nothing may be sent while inFrame(): it would overwrite the packet.
 // OwnedFrameReceiver brings its own buffer.
 #ifndef MAXL_WIRE_FRAME_RECEIVER_H
 #define MAXL_WIRE_FRAME_RECEIVER_H
@@ -45,6 +46,8 @@ class FrameReceiver {
   const uint8_t* payload() const { return buf_ + 2; }
   uint8_t payloadLength() const { return (uint8_t)(packetLength_ - 4); }
   uint32_t arrivedAt() const { return arrivedAt_; }
+  // Part of a frame has arrived (its packet is being written into the buffer).
+  bool inFrame() const { return encoded_ > 0 || overflow_; }
   // After ERROR: why.
   CodecError error() const { return error_; }
 

@@ -1,0 +1,331 @@
+/*
+ * Step-rate harness for bench/firmware.mjs, on libsimavr.
+ *
+ * Runs firmware/bench/StepRate (a MAXL_Device with one MAXL_Stepper, 80
+ * steps/mm) on a simulated 16 MHz ATmega328P and, over its simulated UART at
+ * 250 000 baud, opens a session, subscribes the stepper and queues a straight
+ * move: accelerate at A to v = rate/80 mm/s, cruise CRUISE_MS ms in 6
+ * segments, decelerate. All frames arrive before the move starts (the link is
+ * quiet during it, except for the device's own STATUS reports).
+ *
+ * Every rising edge of STEP (PD2) is stamped with the simulator's cycle count,
+ * turned into the device's micros() through the sketch's calibration edge on
+ * D8. The ideal time of step k is when the position, evaluated in double
+ * precision from the very durations and f32 values that were sent (protocol
+ * §5), crosses (k - 1/2) steps (the step generator's threshold). A step is
+ * MISSED when it comes later than one step period (1 / step rate at that
+ * moment) after its ideal time, earlier than 2 µs before it, or not at all.
+ *
+ * Prints one JSON line: {"rate":..,"steps":..,"expected":..,"missed":..,...}
+ *
+ *   simavr_steps FILE.elf RATE_HZ [ACCEL_MM_S2 [CRUISE_MS]]
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <simavr/avr_ioport.h>
+#include <simavr/avr_uart.h>
+#include <simavr/sim_avr.h>
+#include <simavr/sim_elf.h>
+#include <simavr/sim_irq.h>
+
+#define STEPS_PER_MM 80.0
+#define UNITS_PER_MM 65536.0
+#define F_CPU 16000000.0
+#define MAX_EDGES 400000
+#define CRUISE_SEGMENTS 6  /* 8 segments in all: the Uno queue holds 10 */
+
+static avr_t *avr;
+static uint64_t edges[MAX_EDGES];
+static int edgeCount = 0, edgeOverflow = 0, dirChanges = 0, lastDir = -1;
+static uint64_t calCycle = 0;
+static int calMicrosKnown = 0;
+static double calMicros = 0;
+static char line[128];
+static int lineLen = 0;
+static uint8_t rxBytes[8192];
+static int rxLen = 0;
+
+/* ---------------------------------------------------------------- device output */
+static void onUart(struct avr_irq_t *irq, uint32_t value, void *param) {
+  (void)irq; (void)param;
+  uint8_t b = (uint8_t)value;
+  if (!calMicrosKnown) {
+    if (b == '\n') {
+      line[lineLen] = 0;
+      if (strncmp(line, "CAL ", 4) == 0) { calMicros = atof(line + 4); calMicrosKnown = 1; }
+      lineLen = 0;
+    } else if (b != '\r' && lineLen < (int)sizeof line - 1) {
+      line[lineLen++] = (char)b;
+    }
+    return;
+  }
+  if (rxLen < (int)sizeof rxBytes) rxBytes[rxLen++] = b;
+}
+static void onStep(struct avr_irq_t *irq, uint32_t value, void *param) {
+  (void)irq; (void)param;
+  if (!value) return;
+  if (edgeCount < MAX_EDGES) edges[edgeCount++] = avr->cycle; else edgeOverflow = 1;
+}
+static void onDir(struct avr_irq_t *irq, uint32_t value, void *param) {
+  (void)irq; (void)param;
+  if ((int)value != lastDir) { dirChanges++; lastDir = (int)value; }
+}
+static double deviceMicros(uint64_t cycle);
+/* loop periods (D9 toggles once per loop) */
+static uint64_t lastLoop = 0, loopCount = 0, loopCycles = 0, loopMax = 0;
+static int measureLoops = 0;
+static uint64_t loopHist[8]; /* <25, <30, <40, <50, <100, <200, <500, >=500 µs */
+static void onLoop(struct avr_irq_t *irq, uint32_t value, void *param) {
+  (void)irq; (void)value; (void)param;
+  uint64_t c = avr->cycle;
+  if (measureLoops && lastLoop) {
+    uint64_t d = c - lastLoop;
+    loopCount++;
+    loopCycles += d;
+    if (d > loopMax) loopMax = d;
+    double us = d / 16.0;
+    loopHist[us < 25 ? 0 : us < 30 ? 1 : us < 40 ? 2 : us < 50 ? 3 : us < 100 ? 4 : us < 200 ? 5 : us < 500 ? 6 : 7]++;
+    if (getenv("BENCH_DEBUG") && us > 150) fprintf(stderr, "long loop: %.0f us ending at device time %.0f\n", us, deviceMicros(c));
+  }
+  lastLoop = c;
+}
+static void onCal(struct avr_irq_t *irq, uint32_t value, void *param) {
+  (void)irq; (void)param;
+  if (value && !calCycle) calCycle = avr->cycle;
+}
+
+/* Device micros() (real-valued) at a simulator cycle: the calibration edge
+ * comes ~4 cycles after Timer 0 ticked to the printed value. */
+static double deviceMicros(uint64_t cycle) { return calMicros + ((double)cycle - (double)calCycle - 4.0) / 16.0; }
+
+/* ---------------------------------------------------------------- author side */
+static uint16_t crc16(const uint8_t *p, int n) {
+  uint16_t crc = 0xFFFF;
+  for (int i = 0; i < n; i++) {
+    crc ^= (uint16_t)(p[i] << 8);
+    for (int b = 0; b < 8; b++) crc = (crc & 0x8000) ? (uint16_t)((crc << 1) ^ 0x1021) : (uint16_t)(crc << 1);
+  }
+  return crc;
+}
+static uint8_t tx[4096];
+static int txLen = 0;
+static uint8_t seq = 0;
+static void sendPacket(uint8_t type, const uint8_t *payload, int n) {
+  uint8_t packet[70];
+  int len = 0;
+  packet[len++] = seq++;
+  packet[len++] = type;
+  memcpy(packet + len, payload, n);
+  len += n;
+  uint16_t crc = crc16(packet, len);
+  packet[len++] = (uint8_t)crc;
+  packet[len++] = (uint8_t)(crc >> 8);
+  int codeAt = txLen++, code = 1; /* COBS */
+  for (int i = 0; i < len; i++) {
+    if (packet[i] == 0) { tx[codeAt] = (uint8_t)code; codeAt = txLen++; code = 1; }
+    else { tx[txLen++] = packet[i]; code++; }
+  }
+  tx[codeAt] = (uint8_t)code;
+  tx[txLen++] = 0;
+}
+static int putU16(uint8_t *p, uint32_t v) { p[0] = (uint8_t)v; p[1] = (uint8_t)(v >> 8); return 2; }
+static int putU32(uint8_t *p, uint32_t v) { for (int i = 0; i < 4; i++) p[i] = (uint8_t)(v >> (8 * i)); return 4; }
+static int putF32(uint8_t *p, float f) { uint32_t v; memcpy(&v, &f, 4); return putU32(p, v); }
+static int putVarint(uint8_t *p, uint32_t v) { int n = 0; while (v >= 0x80) { p[n++] = (uint8_t)(v | 0x80); v >>= 7; } p[n++] = (uint8_t)v; return n; }
+
+/* ---------------------------------------------------------------- the move, as sent */
+typedef struct {
+  float length;      /* as sent (f32) */
+  int32_t p0, p1;    /* units */
+  uint8_t shape, phases;
+  uint32_t d[3];
+  float alpha;       /* as sent (f32) */
+  double start;      /* device µs */
+} Segment;
+static Segment seg[CRUISE_SEGMENTS + 2];
+static int segCount = 0;
+
+static int phaseSign(const Segment *s, int k) { int kind = (s->shape >> (2 * k)) & 3; return kind == 1 ? 1 : kind == 3 ? -1 : 0; }
+static double duration(const Segment *s) { double t = 0; for (int k = 0; k < s->phases; k++) t += s->d[k]; return t; }
+
+/* protocol §5 in double: σ and σ' (1/s) at τ µs into the segment */
+static void sigmaAt(const Segment *s, double tauUs, double *sigma, double *nu) {
+  double T = duration(s) * 1e-6, q = 0, rest = 0;
+  for (int k = s->phases - 1; k >= 0; k--) { double d = s->d[k] * 1e-6; q += phaseSign(s, k) * d * (d / 2 + rest); rest += d; }
+  double n = (1.0 - s->alpha * q) / T, sg = 0, tau = tauUs * 1e-6;
+  if (tau < 0) tau = 0;
+  if (tau > T) tau = T;
+  for (int k = 0; k < s->phases; k++) {
+    double d = s->d[k] * 1e-6, in = tau < d ? tau : d, a = phaseSign(s, k) * s->alpha;
+    sg += in * (n + 0.5 * a * in);
+    n += a * in;
+    if (tau < d) break;
+    tau -= d;
+  }
+  *sigma = sg;
+  *nu = n;
+}
+/* position (units) and speed (mm/s) at device time t */
+static void stateAt(double t, double *pos, double *speed) {
+  const Segment *s = &seg[0];
+  for (int i = 0; i < segCount; i++) if (t >= seg[i].start) s = &seg[i];
+  double sigma, nu;
+  sigmaAt(s, t - s->start, &sigma, &nu);
+  *pos = s->p0 + (double)(s->p1 - s->p0) * sigma;
+  *speed = s->length * nu;
+}
+
+static void addSegment(double length, int shape, int phases, const double *seconds, double accel, int32_t *at, double *start) {
+  Segment *s = &seg[segCount++];
+  s->length = (float)length;
+  s->p0 = *at;
+  s->p1 = *at + (int32_t)llround(length * UNITS_PER_MM);
+  *at = s->p1;
+  s->shape = (uint8_t)shape;
+  s->phases = (uint8_t)phases;
+  for (int k = 0; k < phases; k++) s->d[k] = (uint32_t)llround(seconds[k] * 1e6);
+  s->alpha = (float)(accel / length);
+  s->start = *start;
+  *start += duration(s);
+}
+
+int main(int argc, char **argv) {
+  if (argc < 3) { fprintf(stderr, "usage: %s FILE.elf RATE_HZ [ACCEL [CRUISE_MS]]\n", argv[0]); return 2; }
+  double rate = atof(argv[2]);
+  double accel = argc > 3 ? atof(argv[3]) : 10000.0;
+  double cruiseMs = argc > 4 ? atof(argv[4]) : 300.0;
+
+  elf_firmware_t fw;
+  memset(&fw, 0, sizeof fw);
+  if (elf_read_firmware(argv[1], &fw)) { fprintf(stderr, "cannot read %s\n", argv[1]); return 2; }
+  avr = avr_make_mcu_by_name("atmega328p");
+  if (!avr) { fprintf(stderr, "no atmega328p in simavr\n"); return 2; }
+  avr_init(avr);
+  avr->frequency = (uint32_t)F_CPU;
+  avr->log = 0;
+  avr_load_firmware(avr, &fw);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT), onUart, NULL);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('D'), 2), onStep, NULL);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('D'), 5), onDir, NULL);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 0), onCal, NULL);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 1), onLoop, NULL);
+  avr_irq_t *uartIn = avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT);
+
+  /* boot and calibrate */
+  while (!(calMicrosKnown && calCycle)) {
+    int state = avr_run(avr);
+    if (state == cpu_Done || state == cpu_Crashed || avr->cycle > 50 * F_CPU) { fprintf(stderr, "no calibration from the sketch\n"); return 1; }
+  }
+
+  /* the move: v = rate / 80 mm/s */
+  double v = rate / STEPS_PER_MM;
+  double tAcc = v / accel, dAcc = v * v / (2 * accel);
+  double cruiseLen = v * cruiseMs * 1e-3 / CRUISE_SEGMENTS;
+  double start = deviceMicros(avr->cycle) + 60000.0; /* frames take ~15 ms at 250 kbaud */
+  int32_t at = 0;
+  double sec[3];
+  sec[0] = tAcc; addSegment(dAcc, 0x01, 1, sec, accel, &at, &start);
+  for (int i = 0; i < CRUISE_SEGMENTS; i++) { sec[0] = cruiseLen / v; addSegment(cruiseLen, 0x02, 1, sec, accel, &at, &start); }
+  sec[0] = tAcc; addSegment(dAcc, 0x03, 1, sec, accel, &at, &start);
+  double end = start;
+  if (getenv("BENCH_DEBUG")) for (int i = 0; i < segCount; i++) fprintf(stderr, "segment %d starts at %.0f\n", i, seg[i].start);
+  /* The planned speeds come from rounded durations: fix each alpha so that
+   * consecutive segments join (σ' continuous) exactly as the author would. */
+
+  uint8_t p[64];
+  int n;
+  p[0] = 1; sendPacket(0x01, p, 1);                               /* HELLO_REQUEST */
+  p[0] = 0; p[1] = 1; p[2] = 0; sendPacket(0x04, p, 3);           /* SUBSCRIBE stepper -> slot 0 */
+  for (int first = 0; first < segCount; first += 6) {            /* GEOMETRY, 6 per frame */
+    int count = segCount - first < 6 ? segCount - first : 6;
+    n = 0;
+    n += putU16(p + n, (uint32_t)first); p[n++] = (uint8_t)count; p[n++] = first == 0 ? 1 : 0;
+    if (first == 0) n += putU32(p + n, 0);
+    for (int i = first; i < first + count; i++) { n += putF32(p + n, seg[i].length); n += putU32(p + n, (uint32_t)seg[i].p1); }
+    sendPacket(0x05, p, n);
+  }
+  for (int first = 0; first < segCount; first += 4) {            /* TIMING, 4 per frame */
+    int count = segCount - first < 4 ? segCount - first : 4;
+    n = 0;
+    n += putU16(p + n, (uint32_t)first); p[n++] = (uint8_t)count; p[n++] = first == 0 ? 1 : 0;
+    n += putF32(p + n, (float)accel);
+    if (first == 0) n += putU32(p + n, (uint32_t)llround(seg[0].start));
+    for (int i = first; i < first + count; i++) {
+      p[n++] = seg[i].shape;
+      for (int k = 0; k < seg[i].phases; k++) n += putVarint(p + n, seg[i].d[k]);
+      n += putF32(p + n, seg[i].alpha);
+    }
+    sendPacket(0x06, p, n);
+  }
+
+  if (getenv("BENCH_DUMP")) { FILE *f = fopen(getenv("BENCH_DUMP"), "wb"); fwrite(tx, 1, txLen, f); fclose(f); }
+  /* BENCH_PROFILE=FILE: sample the program counter every 97 cycles during the
+   * move and write "address count" lines (byte addresses), for profiling. */
+  const char *profilePath = getenv("BENCH_PROFILE");
+  static uint32_t pcCount[16384];
+  uint64_t nextSample = 0;
+  /* feed bytes at the line rate, then run to the end of the move */
+  uint64_t nextByte = avr->cycle;
+  int sent = 0;
+  uint64_t stopCycle = 0;
+  for (;;) {
+    int state = avr_run(avr);
+    if (state == cpu_Done || state == cpu_Crashed) { fprintf(stderr, "the AVR stopped (state %d)\n", state); return 1; }
+    if (sent < txLen && avr->cycle >= nextByte) { avr_raise_irq(uartIn, tx[sent++]); nextByte = avr->cycle + 16 * 44; }
+    if (!stopCycle && sent == txLen) stopCycle = calCycle + (uint64_t)((end + 50000.0 - calMicros) * 16.0);
+    if (stopCycle && avr->cycle >= stopCycle) break;
+    /* loop periods while the move runs (cruise and ramps) */
+    measureLoops = sent == txLen && deviceMicros(avr->cycle) >= seg[0].start && deviceMicros(avr->cycle) < end;
+    if (profilePath && measureLoops && avr->cycle >= nextSample && (!getenv("BENCH_PROFILE_STALLS") || avr->cycle - lastLoop > 1600)) { pcCount[(avr->pc >> 1) & 16383]++; nextSample = avr->cycle + 97; }
+  }
+
+  if (profilePath) { FILE *f = fopen(profilePath, "w"); for (int i = 0; i < 16384; i++) if (pcCount[i]) fprintf(f, "%d %u\n", i * 2, pcCount[i]); fclose(f); }
+  /* answers: every frame must be acked */
+  int acks = 0, nacks = 0, statuses = 0;
+  { int start2 = 0;
+    for (int i = 0; i < rxLen; i++) {
+      if (rxBytes[i] != 0) continue;
+      uint8_t dec[80]; int dn = 0, j = start2;
+      while (j < i && dn < 70) { int code = rxBytes[j++]; for (int k = 1; k < code && j < i; k++) dec[dn++] = rxBytes[j++]; if (code < 0xFF && j < i) dec[dn++] = 0; }
+      if (dn >= 4 && dec[1] == 0x43) { acks++; if (getenv("BENCH_DEBUG")) fprintf(stderr, "ACK seq %d\n", dec[2]); }
+      if (dn >= 4 && dec[1] == 0x44) { nacks++; fprintf(stderr, "NACK seq %d reason %d detail %d\n", dec[2], dec[3], dec[4] | (dec[5] << 8)); }
+      if (dn >= 4 && dec[1] == 0x46) statuses++;
+      start2 = i + 1;
+    } }
+
+  /* compare every step with its ideal time */
+  long expected = (long)floor((double)at / (UNITS_PER_MM / STEPS_PER_MM) + 0.5);
+  double stepUnits = UNITS_PER_MM / STEPS_PER_MM;
+  int missed = 0, early = 0, late = 0;
+  double maxLag = -1e9, minLag = 1e9, maxLagCruise = -1e9, worstRatio = 0;
+  double cruiseStart = seg[1].start, cruiseEnd = seg[segCount - 1].start;
+  for (long k = 1; k <= expected; k++) {
+    double target = (k - 0.5) * stepUnits, lo = seg[0].start, hi = end;
+    for (int it = 0; it < 60; it++) { double mid = 0.5 * (lo + hi), pos, sp; stateAt(mid, &pos, &sp); if (pos < target) lo = mid; else hi = mid; }
+    double ideal = hi, pos, speed;
+    stateAt(ideal, &pos, &speed);
+    double period = speed > 1e-9 ? 1e6 / (speed * STEPS_PER_MM) : 1e12;
+    if (k > edgeCount) { missed++; continue; }
+    double lag = deviceMicros(edges[k - 1]) - ideal;
+    if (lag > maxLag) maxLag = lag;
+    if (lag < minLag) minLag = lag;
+    if (ideal >= cruiseStart && ideal < cruiseEnd && lag > maxLagCruise) maxLagCruise = lag;
+    if (lag / period > worstRatio) worstRatio = lag / period;
+    if (lag > period) { late++; missed++; }
+    else if (lag < -2.0) { early++; missed++; }
+  }
+  printf("{\"rate\":%.0f,\"speedMmS\":%.3f,\"accelMmS2\":%.0f,\"steps\":%d,\"expected\":%ld,\"missed\":%d,\"late\":%d,\"early\":%d,"
+         "\"maxLagUs\":%.2f,\"minLagUs\":%.2f,\"maxLagCruiseUs\":%.2f,\"worstLagOverPeriod\":%.3f,\"dirChanges\":%d,"
+         "\"acks\":%d,\"nacks\":%d,\"statuses\":%d,\"edgeOverflow\":%d,"
+         "\"loopMeanCycles\":%.1f,\"loopMaxCycles\":%llu,\"loopHistogramUs\":{\"<25\":%llu,\"<30\":%llu,\"<40\":%llu,\"<50\":%llu,\"<100\":%llu,\"<200\":%llu,\"<500\":%llu,\">=500\":%llu}}\n",
+         rate, v, accel, edgeCount, expected, missed + (edgeCount > expected ? edgeCount - (int)expected : 0), late, early,
+         maxLag, minLag, maxLagCruise, worstRatio, dirChanges, acks, nacks, statuses, edgeOverflow,
+         loopCount ? (double)loopCycles / loopCount : 0.0, (unsigned long long)loopMax,
+         (unsigned long long)loopHist[0], (unsigned long long)loopHist[1], (unsigned long long)loopHist[2], (unsigned long long)loopHist[3],
+         (unsigned long long)loopHist[4], (unsigned long long)loopHist[5], (unsigned long long)loopHist[6], (unsigned long long)loopHist[7]);
+  return 0;
+}
