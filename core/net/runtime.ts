@@ -165,6 +165,11 @@ export class Runtime {
     return this.streamer?.lead_us ?? NaN;
   }
 
+  /** The streamer's stall limit (µs): how long an unacknowledged frame holds all timing back. */
+  get streamerStallLimit_us(): number {
+    return this.streamer?.stallLimit_us ?? NaN;
+  }
+
   get startLead_us(): number {
     return this.streamer?.startLead_us ?? NaN;
   }

@@ -42,7 +42,11 @@ export type SendResult = { ok: true } | { ok: false; reason: NackReasonName; det
 export interface SessionOptions {
   /** ms-scale timings, in µs */
   helloTimeout_us: number;
-  /** resend unacknowledged frames after this long (µs) at least; 3·RTT when larger */
+  /**
+   * Resend unacknowledged frames after this long (µs) at least; 2·RTT when larger.
+   * A corrupted frame is nacked at once; this catches the rarer loss of a frame
+   * or of its nack, and must fit within the streamer's lead time.
+   */
   resendAfter_us: number;
   /** the link is lost after this long without a frame from the device (µs) */
   silence_us: number;
@@ -54,7 +58,7 @@ export interface SessionOptions {
 
 export const DEFAULT_SESSION: SessionOptions = {
   helloTimeout_us: 1_000_000,
-  resendAfter_us: 20_000,
+  resendAfter_us: 4_000,
   silence_us: 300_000,
   pingEvery_us: 20_000,
   window: 8,
@@ -75,7 +79,10 @@ interface Outgoing {
   seq: number;
   frame: Uint8Array;
   message: Message;
+  /** the last transmission, for the resend timer */
   sentAt: number;
+  /** the first transmission, for how long the frame has gone unacknowledged */
+  firstSentAt: number;
   resolve(result: SendResult): void;
 }
 
@@ -170,10 +177,21 @@ export class DeviceSession {
     return new Promise((resolve) => {
       const seq = this.nextSeq;
       this.nextSeq = (this.nextSeq + 1) & 0xff;
-      const out: Outgoing = { seq, frame: encodeFrame(seq, message), message, sentAt: 0, resolve };
+      const out: Outgoing = { seq, frame: encodeFrame(seq, message), message, sentAt: 0, firstSentAt: NaN, resolve };
       this.waiting.push(out);
       this.fillWindow();
     });
+  }
+
+  /** How long the oldest unacknowledged frame has waited for its ack since first sent (µs), 0 if none. */
+  get oldestUnacked_us(): number {
+    const oldest = this.inFlight[0];
+    return oldest ? this.scheduler.now() - oldest.firstSentAt : 0;
+  }
+
+  /** The resend timeout in force (µs). */
+  get resendAfter_us(): number {
+    return Math.max(this.options.resendAfter_us, 2 * (this.clock.rttHigh || 0));
   }
 
   /** Frames queued or in flight. */
@@ -221,6 +239,7 @@ export class DeviceSession {
 
   private transmit(out: Outgoing): void {
     out.sentAt = this.scheduler.now();
+    if (Number.isNaN(out.firstSentAt)) out.firstSentAt = out.sentAt;
     // A ping is stamped as its first copy enters the link. (If that copy was lost, the
     // stamp is early: the exchange then looks slow, which the envelopes ignore.)
     const pingId = out.message.type === 'PING' ? out.message.pingId : -1;
@@ -418,8 +437,7 @@ export class DeviceSession {
         return;
       }
       const oldest = this.inFlight[0];
-      const resendAfter = Math.max(this.options.resendAfter_us, 3 * (this.clock.rttHigh || 0));
-      if (oldest && now - oldest.sentAt > resendAfter) this.resendFrom(oldest.seq);
+      if (oldest && now - oldest.sentAt > this.resendAfter_us) this.resendFrom(oldest.seq);
       this.timers.push(this.scheduler.after(Math.min(5_000, this.options.resendAfter_us / 2), check));
     };
     this.timers.push(this.scheduler.after(5_000, check));

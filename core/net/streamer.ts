@@ -50,7 +50,10 @@ export interface DeviceBinding {
 export interface StreamerOptions {
   /** lead time at least this (µs) */
   minLead_us: number;
-  /** added to 2·RTT for the lead time (µs): the author's and the device's own latency */
+  /**
+   * added to 2·RTT for the lead time (µs): the author's and the device's own latency,
+   * and room for one resend of a frame whose nack was lost
+   */
   leadMargin_us: number;
   /** a segment after rest starts this long after RTT from now (µs) */
   startMargin_us: number;
@@ -62,7 +65,7 @@ export interface StreamerOptions {
 
 export const DEFAULT_STREAMER: StreamerOptions = {
   minLead_us: 2_000,
-  leadMargin_us: 1_000,
+  leadMargin_us: 2_500,
   startMargin_us: 700,
   slice_us: 4_000,
   tick_us: 1_000,
@@ -123,6 +126,13 @@ export class Streamer {
     let rtt = 0;
     for (const d of this.devices) rtt = Math.max(rtt, d.binding.session.clock.rttHigh || 0);
     return Math.max(this.options.minLead_us, 2 * rtt + this.options.leadMargin_us);
+  }
+
+  /** A frame unacknowledged for this long (µs) holds all timing back: a high round trip plus 1 ms. */
+  get stallLimit_us(): number {
+    let rtt = 0;
+    for (const d of this.devices) rtt = Math.max(rtt, d.binding.session.clock.rttHigh || 0);
+    return Math.max(3_000, rtt + 1_000);
   }
 
   /** µs from now to the start of a segment after rest: one RTT (the slowest device's worst) plus a margin. */
@@ -213,7 +223,16 @@ export class Streamer {
 
     const newlyTimed: Segment[] = [];
     const horizon = now + this.lead_us;
+    // Every device must hold the same timing, or their braking would start from
+    // different points. While one has not acknowledged a frame for longer than a
+    // round trip should take, nobody gets more timing: if it is gone, all run out
+    // together and brake along the same path; if it recovers, streaming goes on.
+    // (Frames already in flight when one cable goes can still reach the others: no
+    // protocol can make separate links agree on those. The boards then stop apart by
+    // at most the motion of this stall limit; docs/protocol.md §6.)
+    const stalled = this.devices.some((d) => d.binding.session.state !== 'open' || d.binding.session.oldestUnacked_us > this.stallLimit_us);
     for (;;) {
+      if (stalled) break;
       const next = this.queue.timeFront();
       if (!next || next === this.holdAt) break;
       const ahead = this.countAhead(now);

@@ -1,0 +1,89 @@
+/**
+ * Test harness: a real MAXL author talking to a simulated machine (real firmware
+ * in wasm, simulated links and plant), all in deterministic virtual time.
+ */
+import { createMAXL, type Maxl, type MaxlOptions, type Move } from '../index.ts';
+import { VirtualScheduler } from '../time/virtualScheduler.ts';
+import { createSimulatedMachine, type SimulatedMachine, type SimulatedMachineOptions } from '../sim/machine.ts';
+import { nodeWasmLoader } from '../sim/device/nodeWasmLoader.ts';
+import type { MachinePreset } from '../sim/presets/index.ts';
+import type { DeviceInfo } from '../net/session.ts';
+
+export interface Bench {
+  scheduler: VirtualScheduler;
+  sim: SimulatedMachine;
+  maxl: Maxl;
+  devices: DeviceInfo[];
+  /** runtime events seen, in order */
+  events: Array<{ at: number; type: string; text: string }>;
+}
+
+export async function startMachine(
+  preset: MachinePreset,
+  options: { seed?: number; sim?: Partial<SimulatedMachineOptions>; maxl?: Partial<MaxlOptions>; start_us?: number } = {},
+): Promise<Bench> {
+  const scheduler = new VirtualScheduler(options.start_us ?? 0);
+  const sim = await createSimulatedMachine(preset, scheduler, { seed: options.seed ?? 1, loader: nodeWasmLoader(), ...options.sim });
+  const maxl = createMAXL(sim.config, { links: Object.values(sim.links), scheduler, ...options.maxl });
+  const events: Bench['events'] = [];
+  maxl.on((e) => {
+    if (e.type === 'samples') return;
+    events.push({ at: scheduler.now(), type: e.type, text: 'error' in e ? e.error.message : JSON.stringify(e) });
+  });
+  const devices = await settle(scheduler, maxl.begin(), 5_000_000);
+  return { scheduler, sim, maxl, devices, events };
+}
+
+/** Runs virtual time until `promise` settles (or fails after `limit_us`), and returns its value. */
+export async function settle<T>(scheduler: VirtualScheduler, promise: Promise<T>, limit_us: number): Promise<T> {
+  let done = false;
+  let value: T | undefined;
+  let error: unknown;
+  promise.then(
+    (v) => ((done = true), (value = v)),
+    (e) => ((done = true), (error = e)),
+  );
+  await scheduler.runWhile(() => !done, scheduler.now() + limit_us);
+  if (!done) throw new Error(`still waiting after ${limit_us / 1e6} s of virtual time`);
+  if (error !== undefined) throw error;
+  return value as T;
+}
+
+/**
+ * Queues moves as a Listing 2 loop would, and calls `watch` every `every_us` of
+ * virtual time (after syncing the plant) until the machine is idle.
+ */
+export async function runJob(b: Bench, moves: Move[], watch?: (t_us: number) => void, every_us = 1000, limit_us = 60_000_000): Promise<void> {
+  const feeding = (async () => {
+    for (const m of moves) await b.maxl.addSegmentToQueue(m);
+  })();
+  await b.scheduler.advance(0);
+  const end = b.scheduler.now() + limit_us;
+  let fed = false;
+  void feeding.then(() => (fed = true));
+  for (;;) {
+    await b.scheduler.advance(every_us);
+    b.sim.sync();
+    watch?.(b.scheduler.now());
+    if (fed && b.maxl.queue.untransmittedCount === 0 && b.maxl.queue.transmittedEnd_us < b.scheduler.now() - 2000) break;
+    if (b.scheduler.now() > end) throw new Error('job did not finish');
+  }
+  await feeding;
+}
+
+/** For each plant motor: its steps/mm and the track its reader follows. */
+export function motorTracks(b: Bench): Array<{ motor: string; track: string; stepsPerMm: number }> {
+  return b.sim.preset.plant.motors.map((m) => {
+    // A board with one stepper calls its reader anything; a board with several names them after the motors.
+    const readers = b.sim.preset.devices.find((d) => d.name === m.device)?.readers.filter((r) => r.kind === 'position') ?? [];
+    const reader = readers.length === 1 ? readers[0] : readers.find((r) => r.name === m.name);
+    const sub = b.sim.config.subscriptions?.find((s) => s.device === m.device && s.reader === reader?.name);
+    if (!sub) throw new Error(`no subscription drives motor ${m.name}`);
+    return { motor: m.name, track: sub.track, stepsPerMm: m.stepsPerMm };
+  });
+}
+
+/** A track's planned value at author time t. */
+export function planned(b: Bench, track: string, t_us: number): number {
+  return b.maxl.trackValue(track, t_us);
+}
