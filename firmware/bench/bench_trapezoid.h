@@ -7,6 +7,7 @@
 
 #include "maxl/motion/motion.h"
 #include "maxl/motion/profile.h"
+#include "maxl/wire/protocol.h"
 
 // A segment of `length` mm from rest to rest, cruising at most at vc mm/s,
 // accelerating at a mm/s², moving each of `slots` slots by delta[i] units.

@@ -49,12 +49,16 @@ TEST(StepGenerator, EmitsEveryDueStepInOneCall) {
   host::reset();
   MAXL_StepGenerator g(2, 5, 80.0f);
   g.reference(0);
-  g.moveTo(mm(10.0));  // 800 steps in one evaluation
+  // 800 steps due at once: MAXL_MAX_STEPS_PER_EVALUATION per call, all emitted.
+  int calls = 1;
+  while (!g.moveTo(mm(10.0))) calls++;
+  EXPECT_EQ(calls, (800 + MAXL_MAX_STEPS_PER_EVALUATION - 1) / MAXL_MAX_STEPS_PER_EVALUATION);
   EXPECT_EQ(g.steps(), 800);
   PinCount c = countPins(2, 5);
   EXPECT_EQ(c.rising, 800);
   EXPECT_EQ(c.lastDir, 1);
-  g.moveTo(mm(9.0));
+  while (!g.moveTo(mm(9.0))) {
+  }
   EXPECT_EQ(g.steps(), 720);
   c = countPins(2, 5);
   EXPECT_EQ(c.rising, 880);
@@ -66,7 +70,8 @@ TEST(StepGenerator, InvertedDirection) {
   host::reset();
   MAXL_StepGenerator g(3, 6, 100.0f, true);
   g.reference(0);
-  g.moveTo(mm(1.0));
+  while (!g.moveTo(mm(1.0))) {
+  }
   EXPECT_EQ(countPins(3, 6).lastDir, 0);
   g.moveTo(mm(0.0));
   EXPECT_EQ(countPins(3, 6).lastDir, 1);
@@ -82,7 +87,8 @@ TEST(StepGenerator, StepsAreRoundedPositionsAndNeverDrift) {
   for (int i = 0; i < 200000; i++) {
     rng = rng * 1103515245u + 12345u;
     p += (int32_t)((rng >> 16) % 4001) - 2000;
-    g.moveTo(p);
+    while (!g.moveTo(p)) {
+    }
     double n = std::floor(p / s + 0.5);
     ASSERT_NEAR(g.steps(), n, 1.0) << i;  // equal except within rounding of s of a threshold
     if (std::fabs(p / s + 0.5 - std::round(p / s + 0.5)) > 1e-3) {

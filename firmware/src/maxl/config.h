@@ -85,6 +85,14 @@
 #endif
 #endif
 
+// Most steps one stepper emits per evaluation. Real motion needs a few at most
+// (64 per 50 µs loop is 1.3 million steps/s); the bound only matters when a
+// bogus position jump would ask for millions at once: the device then catches
+// up over the following loops instead of freezing.
+#ifndef MAXL_MAX_STEPS_PER_EVALUATION
+#define MAXL_MAX_STEPS_PER_EVALUATION 64
+#endif
+
 // Serial rate used by MAXL_Device::begin(port) when none is given. 250 000
 // baud is exact at 16 MHz; native-USB boards ignore it.
 #ifndef MAXL_DEFAULT_BAUD

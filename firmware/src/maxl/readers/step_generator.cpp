@@ -74,8 +74,10 @@ inline __attribute__((always_inline)) void MAXL_StepGenerator::step(int8_t direc
   steps_ += direction;
 }
 
-void MAXL_StepGenerator::moveTo(int32_t units) {
+bool MAXL_StepGenerator::moveTo(int32_t units) {
+  uint8_t budget = MAXL_MAX_STEPS_PER_EVALUATION;
   while (units >= upCeil_) {
+    if (!budget--) return false;
     step(1);
     uint16_t frac = (uint16_t)(upFrac_ + sFrac_);
     upWhole_ = (int32_t)((uint32_t)upWhole_ + (uint32_t)sWhole_ + (frac < upFrac_ ? 1u : 0u));
@@ -83,11 +85,13 @@ void MAXL_StepGenerator::moveTo(int32_t units) {
     refreshCeilings();
   }
   while (units < downCeil_) {
+    if (!budget--) return false;
     step(-1);
     uint16_t frac = (uint16_t)(upFrac_ - sFrac_);
     upWhole_ = (int32_t)((uint32_t)upWhole_ - (uint32_t)sWhole_ - (upFrac_ < sFrac_ ? 1u : 0u));
     upFrac_ = frac;
     refreshCeilings();
   }
+  return true;
 }
 

@@ -16,6 +16,7 @@
 
 #include <stdint.h>
 
+#include "maxl/config.h"
 #include "maxl/hal/hal.h"
 
 class MAXL_StepGenerator {
@@ -28,8 +29,10 @@ class MAXL_StepGenerator {
   // Declares that the motor is at `units` without moving it (a session's
   // reference position): step count = round(units / s).
   void reference(int32_t units);
-  // Emits every step between the motor's step and the one `units` rounds to.
-  void moveTo(int32_t units);
+  // Emits every step between the motor's step and the one `units` rounds to,
+  // up to MAXL_MAX_STEPS_PER_EVALUATION per call (the rest on the next calls).
+  // Returns true when the motor has reached that step.
+  bool moveTo(int32_t units);
 
   int32_t steps() const { return steps_; }
   float stepsPerUnit() const { return stepsPerUnit_; }

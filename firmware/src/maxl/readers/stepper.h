@@ -28,11 +28,18 @@ class MAXL_Stepper : public MAXL_TrackPositionLinear {
     if (first)
       generator_.reference(units);
     else
-      generator_.moveTo(units);
+      behind_ = !generator_.moveTo(units);
+  }
+  // A bounded catch-up (see MAXL_MAX_STEPS_PER_EVALUATION) goes on even when
+  // the position does not change any more.
+  void onTick(MAXL_Device& device) {
+    MAXL_TrackPositionLinear::onTick(device);
+    if (behind_) behind_ = !generator_.moveTo(positionUnits());
   }
 
  private:
   MAXL_StepGenerator generator_;
+  bool behind_ = false;
 };
 
 #endif

@@ -1,0 +1,144 @@
+#!/usr/bin/env node
+// `npm run bench -- firmware`: performance of the reader library on an
+// ATmega328P (simulated cycle by cycle by simavr) and on the host. Prints one
+// JSON object as the last line:
+//
+//   avrCyclesPerEval      CPU cycles of one position evaluation (the hot path
+//                         of MAXL_Device::loop(), Motion::tick for one slot),
+//                         mean over a 100 mm move evaluated every 20 µs;
+//                         Timer 1 at clk/1 around each call (EvalCycles sketch)
+//   avrStepRateHz         the highest cruise step rate at which one stepper
+//                         (the Stepper example's device, fed real frames over
+//                         the simulated UART) emits EVERY step within one step
+//                         period after its ideal time, none more than 2 µs
+//                         early, none missing (libsimavr harness, see
+//                         bench/firmware/simavr_steps.c); searched in 250 Hz
+//   hostInstructionsPerEval  the same evaluation on the host (callgrind)
+//   bytesPerLinearSegment merged from bench/segment-bytes.ts (the TS encoder)
+//                         when that file exists
+// Measured every run; nothing is hard-coded.
+import { spawnSync } from 'node:child_process';
+import { existsSync, mkdirSync, readdirSync } from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const out = path.join(root, 'firmware', 'build', 'bench');
+mkdirSync(out, { recursive: true });
+
+function run(cmd, args, options = {}) {
+  const r = spawnSync(cmd, args, { cwd: root, encoding: 'utf8', maxBuffer: 64 << 20, ...options });
+  if (r.error) throw new Error(`${cmd}: ${r.error.message}`);
+  return r;
+}
+function must(cmd, args, what) {
+  const r = run(cmd, args);
+  if (r.status !== 0) {
+    process.stderr.write(r.stdout + r.stderr);
+    throw new Error(`${what} failed (${cmd} exit ${r.status})`);
+  }
+  return r.stdout + r.stderr;
+}
+const log = (...a) => console.log('[bench firmware]', ...a);
+const clean = (s) => s.replace(/\x1b\[[0-9;]*m/g, '');
+
+// ---- builds
+for (const sketch of ['EvalCycles', 'StepRate']) {
+  must('bash', ['scripts/firmware-avr-sketch.sh', `firmware/bench/${sketch}`, out], `AVR build of ${sketch}`);
+}
+const harness = path.join(out, 'simavr_steps');
+must('gcc', ['-O2', '-Wall', '-o', harness, 'bench/firmware/simavr_steps.c', '-lsimavr', '-lm'], 'the simavr harness build');
+
+// ---- cycles per evaluation
+const evalOut = clean(must('timeout', ['600', 'simavr', '-m', 'atmega328p', '-f', '16000000', path.join(out, 'EvalCycles/EvalCycles.elf')], 'EvalCycles in simavr'));
+const parse = (label) => {
+  const m = evalOut.match(new RegExp(`RESULT ${label} evaluations=(\\d+) meanCycles=([\\d.]+) maxCycles=(\\d+)`));
+  if (!m) throw new Error(`no "${label}" result from EvalCycles:\n${evalOut}`);
+  return { evaluations: Number(m[1]), mean: Number(m[2]), max: Number(m[3]) };
+};
+const one = parse('oneSlot');
+const two = parse('twoSlots');
+log(`evaluation, one slot: ${one.mean} cycles mean, ${one.max} max over ${one.evaluations}; two slots: ${two.mean} mean`);
+
+// ---- step rate: binary search for the highest rate without a missed step
+const elf = path.join(out, 'StepRate/StepRate.elf');
+const trials = new Map();
+function trial(rate) {
+  if (trials.has(rate)) return trials.get(rate);
+  const r = run('timeout', ['600', harness, elf, String(rate)]);
+  const line = r.stdout.trim().split('\n').pop();
+  let result;
+  try {
+    result = JSON.parse(line);
+  } catch {
+    throw new Error(`harness gave no JSON at ${rate} Hz:\n${r.stdout}${r.stderr}`);
+  }
+  if (result.nacks || result.steps === 0) throw new Error(`the device refused the move at ${rate} Hz: ${line}`);
+  log(`${rate} Hz: ${result.missed} missed of ${result.expected} (late ${result.late}, early ${result.early}), max lag ${result.maxLagUs} µs, loop ${result.loopMeanCycles} cycles mean, ${(result.loopMaxCycles / 16).toFixed(0)} µs max`);
+  trials.set(rate, result);
+  return result;
+}
+const STEP = 250;
+let lo = 0;
+let hi = 80000;
+if (trial(hi).missed === 0) lo = hi;
+while (hi - lo > STEP) {
+  const mid = Math.round((lo + hi) / 2 / STEP) * STEP;
+  if (mid <= lo || mid >= hi) break;
+  if (trial(mid).missed === 0) lo = mid;
+  else hi = mid;
+}
+const best = lo ? trials.get(lo) : null;
+log(lo ? `highest rate without a missed step: ${lo} Hz` : 'steps were missed at every rate tried');
+
+// ---- host instructions per evaluation (callgrind)
+let hostInstructionsPerEval;
+const hostBin = path.join(out, 'eval_host');
+const library = readdirSync(path.join(root, 'firmware/src'), { recursive: true })
+  .filter((f) => f.endsWith('.cpp'))
+  .map((f) => path.join('firmware/src', f))
+  .sort();
+must('g++', ['-std=c++11', '-O2', '-fno-exceptions', '-fno-rtti', '-Ifirmware/src', 'bench/firmware/eval_host.cpp', ...library, '-o', hostBin], 'the host evaluation build');
+if (run('sh', ['-c', 'command -v valgrind']).status === 0) {
+  const instructions = (n) => {
+    const r = run('valgrind', ['--tool=callgrind', '--callgrind-out-file=/dev/null', hostBin, String(n)]);
+    const m = (r.stderr || '').match(/Collected : (\d+)/);
+    if (!m) throw new Error(`callgrind gave no count:\n${r.stderr}`);
+    return Number(m[1]);
+  };
+  const n1 = 10000;
+  const n2 = 210000;
+  hostInstructionsPerEval = Number(((instructions(n2) - instructions(n1)) / (n2 - n1)).toFixed(1));
+  log(`host: ${hostInstructionsPerEval} instructions per evaluation (callgrind, g++ -O2)`);
+} else {
+  process.stderr.write('[bench firmware] valgrind not found: hostInstructionsPerEval omitted\n');
+}
+
+// ---- bytes per linear segment, from the TS encoder
+let bytesPerLinearSegment;
+if (existsSync(path.join(root, 'bench/segment-bytes.ts'))) {
+  const r = run('npx', ['tsx', 'bench/segment-bytes.ts']);
+  const last = (r.stdout || '').trim().split('\n').pop();
+  try {
+    const j = JSON.parse(last);
+    bytesPerLinearSegment = j.bytesPerLinearSegment;
+    log(`bytesPerLinearSegment from bench/segment-bytes.ts: ${bytesPerLinearSegment}`);
+  } catch {
+    process.stderr.write(`[bench firmware] bench/segment-bytes.ts printed no JSON last line (exit ${r.status}): bytesPerLinearSegment omitted\n`);
+  }
+} else {
+  process.stderr.write('[bench firmware] bench/segment-bytes.ts does not exist yet: bytesPerLinearSegment omitted\n');
+}
+
+const result = {
+  avrCyclesPerEval: one.mean,
+  avrCyclesPerEvalMax: one.max,
+  avrCyclesPerEvalTwoSlots: two.mean,
+  avrStepRateHz: lo,
+  avrStepRateDefinition:
+    'highest cruise rate (250 Hz grid, 80 steps/mm, 10000 mm/s² ramps, 300 ms cruise, all frames sent before the move, STATUS reports running) at which every step edge comes within one step period after its ideal time, none more than 2 µs early, none missing',
+  ...(best ? { avrStepRateMaxLagUs: best.maxLagUs, avrLoopCyclesMean: best.loopMeanCycles, avrLoopMaxUs: Number((best.loopMaxCycles / 16).toFixed(1)) } : {}),
+  ...(hostInstructionsPerEval !== undefined ? { hostInstructionsPerEval } : {}),
+  ...(bytesPerLinearSegment !== undefined ? { bytesPerLinearSegment } : {}),
+};
+console.log(JSON.stringify(result));
