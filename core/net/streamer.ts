@@ -239,9 +239,12 @@ export class Streamer {
       if (this.queue.transmittedEnd_us >= horizon && ahead >= 2) break;
       const start = this.queue.nextStart_us(now + this.startLead_us);
       // Lock long segments a slice at a time. When the two-segment minimum asks for a
-      // segment that starts at or past the horizon, lock one slice of it, not all of it.
-      const reach = Math.max(horizon + this.options.slice_us - start, this.options.slice_us);
-      if (next.duration_s * 1e6 > reach + this.options.slice_us) {
+      // segment that starts at or past the horizon and is longer than a lead (a held
+      // jog), lock one slice of it, not all of it; shorter ones are locked whole.
+      const slice = this.options.slice_us;
+      const beyond = next.duration_s * 1e6 > this.lead_us + 2 * slice ? slice : 0;
+      const reach = horizon + slice - start > 0 ? horizon + slice - start : beyond;
+      if (reach > 0 && next.duration_s * 1e6 > reach + slice) {
         const d = evaluateTiming(next.timing!, reach * 1e-6, { s: 0, v: 0, a: 0 }).s;
         if (d > MIN_SPLIT_MM && d < next.length - MIN_SPLIT_MM) {
           this.queue.splitFront(d);
