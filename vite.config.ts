@@ -8,7 +8,11 @@ export default defineConfig({
   root: 'app',
   publicDir: '../public',
   plugins: [svelte()],
-  server: { port: 5173 },
+  // The e2e specs and the ui bench serve without HMR: a file saved mid-run must not reload the page under test.
+  server: { port: 5173, ...(process.env.MAXL_NO_HMR ? { hmr: false, watch: null } : {}) },
+  // Pre-bundle the workbench's dependencies up front: discovered later (the worker,
+  // a dynamic import), vite would reload the page mid-session.
+  optimizeDeps: { include: ['three', 'three/addons/controls/OrbitControls.js', 'web-serial-polyfill', 'd3-dsv'] },
   build: { outDir: '../dist', emptyOutDir: true },
   test: {
     root: here,

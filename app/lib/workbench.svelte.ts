@@ -24,9 +24,16 @@ import {
 /** Log entries kept on the page. */
 const LOG_LIMIT = 500;
 
+export interface PreviewData {
+  points: Float32Array;
+  coarse: Float32Array;
+  coarseIndex: Uint32Array;
+  tolerance_mm: number;
+}
+
 export interface ViewSink {
   applySnapshot(s: Snapshot): void;
-  setPreview(vertices: Float32Array): void;
+  setPreview(preview: PreviewData): void;
 }
 
 export class WorkbenchStore {
@@ -45,7 +52,7 @@ export class WorkbenchStore {
   previewSegments = $state(0);
   /** The 3D view, once mounted; previews that arrive before it wait. */
   private view: ViewSink | null = null;
-  private pendingPreview: Float32Array | null = null;
+  private pendingPreview: PreviewData | null = null;
   private nextCheck = 1;
   private localLogId = -1;
 
@@ -70,8 +77,8 @@ export class WorkbenchStore {
           break;
         case 'job-preview':
           this.previewSegments = e.segments;
-          if (this.view) this.view.setPreview(e.points);
-          else this.pendingPreview = e.points;
+          if (this.view) this.view.setPreview(e);
+          else this.pendingPreview = e;
           break;
       }
     });

@@ -3,8 +3,12 @@
  * transmitted), the queue (planned and unplanned), a job's preview, the work
  * area, the origin, and the tool at the author's real-time estimate.
  *
- * It draws only when something changed (a snapshot, the camera). Everything big
- * lives in BufferGeometry that is appended to with update ranges, never rebuilt.
+ * Everything big lives in BufferGeometry that is appended to with update ranges,
+ * never rebuilt. The tool and the origin are drawn on a 2D overlay every frame; the
+ * WebGL scene is drawn only when it changed, and no more often than the GPU keeps
+ * up with: after each draw, the time until the next frame says what a draw costs,
+ * and a costly scene (a million segments on a software renderer) is redrawn at most
+ * every few such costs while it streams. Camera moves always draw at once.
  */
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
@@ -13,7 +17,7 @@ import { AppendOnlyPath } from './appendOnlyPath.ts';
 import { JobPreview } from './jobPreview.ts';
 import { QueueLines } from './queueLines.ts';
 import { SCENE_COLORS, STATE_COLORS } from './colors.ts';
-import { ToolMarker } from './toolMarker.ts';
+import { ToolOverlay } from './toolOverlay.ts';
 import { WorkArea } from './workArea.ts';
 
 export type CameraMode = 'top' | '3d';
@@ -26,35 +30,46 @@ export class TrajectoryView {
   private readonly locked = new AppendOnlyPath(STATE_COLORS.historical, STATE_COLORS.transmitted);
   private readonly queue = new QueueLines(STATE_COLORS.planned, STATE_COLORS.unplanned);
   private readonly preview = new JobPreview(STATE_COLORS.unplanned);
-  private readonly tool = new ToolMarker(SCENE_COLORS.tool, 14);
-  private readonly originMarker = new ToolMarker(SCENE_COLORS.origin, 9);
+  private readonly overlay: ToolOverlay;
+  private readonly originPosition = new THREE.Vector3();
   private readonly workArea = new WorkArea();
   private readonly resizeObserver: ResizeObserver;
   private runtimeId = -1;
   private dirty = true;
   private mode: CameraMode = 'top';
   private frameHandle = 0;
+  /** ms a scene draw is allowed to wait for, after the last one, while content streams. */
+  private drawInterval = 0;
+  private lastDraw = -Infinity;
+  private measuring = false;
+  private width = 1;
+  private height = 1;
   /** Renders so far, and the snapshot-to-pixels bookkeeping the tests and the bench read. */
   renders = 0;
   readonly toolPosition = new THREE.Vector3();
 
-  constructor(private readonly canvas: HTMLCanvasElement) {
-    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true });
+  constructor(
+    private readonly canvas: HTMLCanvasElement,
+    overlayCanvas: HTMLCanvasElement,
+  ) {
+    this.overlay = new ToolOverlay(overlayCanvas);
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: false });
     this.renderer.setPixelRatio(Math.min(2, window.devicePixelRatio));
     this.scene.background = new THREE.Color(SCENE_COLORS.background);
     this.scene.add(
       this.workArea.group,
-      this.preview.line,
+      this.preview.group,
       this.locked.historicalLines,
       this.locked.transmittedLines,
       this.queue.lines,
-      this.originMarker.points,
-      this.tool.points,
     );
     this.controls = new OrbitControls(this.camera, canvas);
     this.controls.enableDamping = false;
     this.controls.screenSpacePanning = true;
-    this.controls.addEventListener('change', () => this.requestRender());
+    this.controls.addEventListener('change', () => {
+      this.updateScale();
+      this.requestRender(true);
+    });
     this.resizeObserver = new ResizeObserver(() => this.resize());
     this.resizeObserver.observe(canvas.parentElement ?? canvas);
     this.setMode('top');
@@ -82,8 +97,8 @@ export class TrajectoryView {
   }
 
   setOrigin(origin: readonly number[]): void {
-    this.originMarker.moveTo(origin[0] ?? 0, origin[1] ?? 0, origin[2] ?? 0);
-    this.requestRender();
+    this.originPosition.set(origin[0] ?? 0, origin[1] ?? 0, origin[2] ?? 0);
+    this.drawOverlay();
   }
 
   applySnapshot(s: Snapshot): void {
@@ -92,20 +107,22 @@ export class TrajectoryView {
       this.locked.clear();
       this.queue.clear();
     }
+    const historical = this.locked.historicalSegments;
     if (s.locked.length > 0) this.locked.append(s.lockedFrom, s.locked);
     this.locked.setHistorical(s.historical);
     if (s.queue && s.queueStates) this.queue.set(s.queue, s.queueStates);
     this.preview.setFed(s.job && s.jobFed > 0 ? s.jobFed : 0);
     const p = s.position;
-    this.tool.moveTo(p[0] ?? 0, p[1] ?? 0, p[2] ?? 0);
     this.toolPosition.set(p[0] ?? 0, p[1] ?? 0, p[2] ?? 0);
-    this.dirty = true;
-    this.renderNow();
+    this.drawOverlay();
+    if (s.locked.length > 0 || s.queue || historical !== this.locked.historicalSegments) this.requestRender();
   }
 
-  /** Shows a job's whole path. Returns once it is drawn. */
-  setPreview(vertices: Float32Array): void {
-    this.preview.set(vertices);
+  /** Shows a job's whole path (and its coarse copy for the overview), drawn in this task. */
+  setPreview(vertices: Float32Array, coarse: Float32Array, coarseIndex: Uint32Array, tolerance_mm: number): void {
+    this.preview.set(vertices, coarse, coarseIndex, tolerance_mm);
+    this.updateScale();
+    this.dirty = true;
     this.renderNow();
   }
 
@@ -142,24 +159,56 @@ export class TrajectoryView {
     this.camera.far = distance * 100;
     this.camera.updateProjectionMatrix();
     this.controls.update();
-    this.requestRender();
+    this.updateScale();
+    this.requestRender(true);
   }
 
-  /** Renders at the next animation frame. */
-  requestRender(): void {
+  /**
+   * Draws the scene at the next animation frame, or later if the last draws were
+   * costly (`now`: a camera move, drawn at once regardless).
+   */
+  requestRender(now = false): void {
     this.dirty = true;
     if (this.frameHandle) return;
-    this.frameHandle = requestAnimationFrame(() => {
+    const tick = () => {
       this.frameHandle = 0;
+      if (!now && performance.now() - this.lastDraw < this.drawInterval) {
+        this.frameHandle = requestAnimationFrame(tick);
+        return;
+      }
       this.renderNow();
-    });
+    };
+    this.frameHandle = requestAnimationFrame(tick);
   }
 
   renderNow(): void {
+    this.drawOverlay();
     if (!this.dirty) return;
     this.dirty = false;
+    const start = performance.now();
     this.renderer.render(this.scene, this.camera);
+    this.lastDraw = start;
     this.renders++;
+    // What the draw cost shows in when the next frame comes.
+    if (!this.measuring) {
+      this.measuring = true;
+      requestAnimationFrame(() => {
+        this.measuring = false;
+        const cost = performance.now() - start;
+        this.drawInterval = cost > 40 ? Math.min(3000, 4 * cost) : 0;
+      });
+    }
+  }
+
+  /** Pixels per mm at the orbit target, for the preview's choice of detail. */
+  private updateScale(): void {
+    const distance = this.camera.position.distanceTo(this.controls.target);
+    const visibleHeight = 2 * distance * Math.tan(THREE.MathUtils.degToRad(this.camera.fov / 2));
+    this.preview.setScale(this.height / Math.max(visibleHeight, 1e-9));
+  }
+
+  private drawOverlay(): void {
+    this.overlay.draw(this.camera, this.toolPosition, this.originPosition, this.width, this.height);
   }
 
   dispose(): void {
@@ -174,6 +223,9 @@ export class TrajectoryView {
     const width = Math.max(1, host.clientWidth);
     const height = Math.max(1, host.clientHeight);
     this.renderer.setSize(width, height, false);
+    this.width = width;
+    this.height = height;
+    this.overlay.resize(width, height, this.renderer.getPixelRatio());
     this.camera.aspect = width / height;
     this.camera.updateProjectionMatrix();
     this.requestRender();

@@ -22,13 +22,16 @@ export function patternPoints(pattern: JobPattern, segments: number, size: numbe
     put(2, 0, size);
     put(3, 0, 0);
   } else if (pattern === 'spiral') {
-    // An Archimedean spiral from the centre out, about 64 points per turn at most.
+    // An Archimedean spiral r = bθ from the centre out, about 64 points per turn at
+    // most, in steps of equal length: the arc length from the centre is about bθ²/2,
+    // so point i sits at θ = θmax·√((i + 1)/n).
     const turns = Math.max(1, Math.min(200, n / 64));
     const r = size / 2;
+    const thetaMax = turns * 2 * Math.PI;
     for (let i = 0; i < n; i++) {
-      const f = (i + 1) / n;
-      const angle = f * turns * 2 * Math.PI;
-      put(i, r + r * f * Math.cos(angle), r + r * f * Math.sin(angle));
+      const theta = thetaMax * Math.sqrt((i + 1) / n);
+      const radius = (r * theta) / thetaMax;
+      put(i, r + radius * Math.cos(theta), r + radius * Math.sin(theta));
     }
   } else {
     // A raster: rows along x, stepping in y; each row is split into equal segments.

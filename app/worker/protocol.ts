@@ -236,8 +236,12 @@ export type WorkerEvent =
   | { type: 'config-check'; check: ConfigCheck }
   | { type: 'log'; entry: LogEntry }
   | { type: 'jog-stopped'; report: JogStopReport }
-  /** A job's whole path, once, for the view (n points × 3, machine mm; the tool's start first). */
-  | { type: 'job-preview'; name: string; points: Float32Array; segments: number };
+  /**
+   * A job's whole path, once, for the view: (n + 1) points × 3, machine mm, the
+   * tool's start first; and a coarse copy within `tolerance_mm` for the overview,
+   * with the index into `points` of each vertex it kept.
+   */
+  | { type: 'job-preview'; name: string; points: Float32Array; segments: number; coarse: Float32Array; coarseIndex: Uint32Array; tolerance_mm: number };
 
 /** The transferable buffers of an event, for postMessage. */
 export function transferablesOf(e: WorkerEvent): Transferable[] {
@@ -247,6 +251,6 @@ export function transferablesOf(e: WorkerEvent): Transferable[] {
     if (e.queueStates) list.push(e.queueStates.buffer);
     return list as Transferable[];
   }
-  if (e.type === 'job-preview') return [e.points.buffer as ArrayBuffer];
+  if (e.type === 'job-preview') return [e.points.buffer as ArrayBuffer, e.coarse.buffer as ArrayBuffer, e.coarseIndex.buffer as ArrayBuffer];
   return [];
 }

@@ -27,6 +27,7 @@ import type {
   WorkerEvent,
 } from './protocol.ts';
 import { SharedPort } from './sharedPort.ts';
+import { decimate, overviewTolerance } from './previewDecimation.ts';
 import { presetConfig, presetViews, startSimulatedMachine, truthOf } from './simulatedMachines.ts';
 import { SnapshotBuilder } from './snapshotBuilder.ts';
 
@@ -41,11 +42,13 @@ interface DeviceConnection {
 /**
  * Streaming margins for real time in a browser worker. The core's defaults (1 ms
  * of margin) suit virtual time; here timers fire late by several ms whenever the
- * worker is busy (and the simulated devices share that worker), and segments then
- * arrive too late to run. 20 ms keeps the stream ahead; the cost is that a
- * hold-to-jog release brakes about 2·RTT + 20 ms later.
+ * worker is busy (and the simulated devices share that worker), and a segment that
+ * arrives too late to run stops the stream. So: 30 ms on the lead, 50 ms before a
+ * start from rest, and 2 s of clock sync before streaming. The cost: a hold-to-jog
+ * release brakes about 2·RTT + 30 ms later, and a move from rest starts ~50 ms later.
  */
-const REAL_TIME_STREAMER = { minLead_us: 20_000, leadMargin_us: 20_000, startMargin_us: 20_000 };
+const REAL_TIME_STREAMER = { minLead_us: 30_000, leadMargin_us: 30_000, startMargin_us: 50_000 };
+const SYNC_BEFORE_START_US = 2_000_000;
 
 /** Device reports go to the page at most this often, ms. */
 const DEVICE_REPORT_MS = 250;
@@ -76,7 +79,11 @@ export class Workbench {
   constructor(private readonly post: (e: WorkerEvent) => void) {
     this.jobs = new JobRunner({
       log: (level, code, message) => this.log(level, code, message),
-      preview: (name, points, segments) => this.post({ type: 'job-preview', name, points, segments }),
+      preview: (name, points, segments) => {
+        const tolerance_mm = overviewTolerance(points);
+        const coarse = decimate(points, tolerance_mm);
+        this.post({ type: 'job-preview', name, points, segments, coarse: coarse.vertices, coarseIndex: coarse.index, tolerance_mm });
+      },
     });
     this.jog = new JogController({
       warn: (code, message) => this.log('warning', code, message),
@@ -245,7 +252,7 @@ export class Workbench {
     if (this.origin.length !== axes) this.origin = new Array<number>(axes).fill(0);
     let maxl: Maxl;
     try {
-      maxl = createMAXL(this.config, { links: this.devices.map((d) => d.port.session()), initialPosition: this.position, scheduler: this.scheduler, streamer: REAL_TIME_STREAMER });
+      maxl = createMAXL(this.config, { links: this.devices.map((d) => d.port.session()), initialPosition: this.position, scheduler: this.scheduler, streamer: REAL_TIME_STREAMER, syncBeforeStart_us: SYNC_BEFORE_START_US });
     } catch (err) {
       const words = errorWords(err);
       this.setPhase('not-ready', words.message);

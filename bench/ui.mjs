@@ -1,0 +1,159 @@
+#!/usr/bin/env node
+/**
+ * `npm run bench -- ui`: the workbench in Debian's chromium, on the default
+ * simulated machine (the light painter), measured with Playwright.
+ *
+ *   showMillionMs   from asking for a 1 000 000-segment job to that job drawn in the
+ *                   3D view (worker draws the path, transfers it, the page uploads and
+ *                   renders it)
+ *   longestTaskMs   the longest main-thread task (PerformanceObserver 'longtask',
+ *                   which only reports tasks over 50 ms; 0 means none) while a
+ *                   100 000-segment job streams with the 3D view open
+ *   maxFrameGapMs   the longest gap between animation frames meanwhile
+ *   fps             animation frames per second meanwhile
+ *   streamedSegments  segments the machine finished in the measured window
+ *   jogBrakeLatencyMs, jogRestLatencyMs  hold-to-jog: from the key's release to braking, and to rest
+ *
+ * Options: --seconds N (streaming window, default 20), --full (stream the whole job).
+ * Prints one JSON object as its last line.
+ */
+import { chromium } from '@playwright/test';
+import { spawn } from 'node:child_process';
+import { setTimeout as delay } from 'node:timers/promises';
+
+const args = process.argv.slice(2);
+const seconds = Number(args[args.indexOf('--seconds') + 1]) > 0 && args.includes('--seconds') ? Number(args[args.indexOf('--seconds') + 1]) : 20;
+const full = args.includes('--full');
+const PORT = 5175;
+const URL_ = `http://localhost:${PORT}/`;
+const ARGS = ['--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update', '--disable-sync'];
+
+const server = spawn('npx', ['vite', '--port', String(PORT), '--strictPort'], { env: { ...process.env, MAXL_NO_HMR: '1' }, stdio: 'ignore', detached: true });
+const stopServer = () => {
+  try {
+    process.kill(-server.pid, 'SIGTERM');
+  } catch {
+    // already gone
+  }
+};
+process.on('exit', stopServer);
+
+async function waitForServer() {
+  for (let i = 0; i < 300; i++) {
+    try {
+      const r = await fetch(URL_);
+      if (r.ok) return;
+    } catch {
+      // not yet
+    }
+    await delay(100);
+  }
+  throw new Error(`vite did not start on ${URL_}`);
+}
+
+await waitForServer();
+const browser = await chromium.launch({ executablePath: process.env.CHROMIUM_PATH ?? '/usr/bin/chromium', args: ARGS });
+const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+page.on('pageerror', (e) => console.error(`[page error] ${e.message}`));
+await page.goto(URL_);
+await page.waitForFunction(() => document.querySelector('[data-testid=phase]')?.textContent === 'ready', null, { timeout: 60_000 });
+console.error('[ui] workbench ready on the simulated light painter');
+
+// Main-thread instruments: long tasks, and animation frames.
+await page.evaluate(() => {
+  const w = window;
+  w.__bench = { longtasks: [], frames: 0, maxGap: 0, last: 0, measuring: false };
+  new PerformanceObserver((list) => {
+    for (const e of list.getEntries()) w.__bench.longtasks.push(e.duration);
+  }).observe({ type: 'longtask', buffered: false });
+  const frame = (t) => {
+    const b = w.__bench;
+    if (b.measuring) {
+      b.frames++;
+      if (b.last > 0) b.maxGap = Math.max(b.maxGap, t - b.last);
+    }
+    b.last = t;
+    requestAnimationFrame(frame);
+  };
+  requestAnimationFrame(frame);
+});
+const resetInstruments = () =>
+  page.evaluate(() => {
+    Object.assign(window.__bench, { longtasks: [], frames: 0, maxGap: 0, last: 0, measuring: true, t0: performance.now() });
+  });
+const readInstruments = () =>
+  page.evaluate(() => {
+    const b = window.__bench;
+    b.measuring = false;
+    const elapsed = (performance.now() - b.t0) / 1000;
+    return { longest: b.longtasks.length ? Math.max(...b.longtasks) : 0, count: b.longtasks.length, fps: b.frames / elapsed, maxGap: b.maxGap, elapsed };
+  });
+
+// 1. A 100 000-segment job streaming with the 3D view open.
+await page.evaluate(() => window.maxlWorkbench.startJob({ name: 'bench 100k', pattern: 'spiral', segments: 100_000, size_mm: 150, maxVelocity: 25 }));
+await page.waitForFunction(() => window.maxlWorkbench.job?.phase === 'running' && window.maxlWorkbench.job.doneSegments > 0, null, { timeout: 60_000 });
+await resetInstruments();
+const done0 = await page.evaluate(() => window.maxlWorkbench.job.doneSegments);
+if (full) await page.waitForFunction(() => window.maxlWorkbench.job?.phase !== 'running', null, { timeout: 0 });
+else await delay(seconds * 1000);
+const stream = await readInstruments();
+const job = await page.evaluate(() => window.maxlWorkbench.job);
+const errors = await page.evaluate(() => window.maxlWorkbench.log.filter((e) => e.level === 'error').map((e) => `${e.code}: ${e.message.split('\n')[0]}`));
+console.error(`[ui] streamed ${job.doneSegments - done0} segments in ${stream.elapsed.toFixed(1)} s; job ${job.phase}; errors: ${errors.length ? errors.slice(0, 5).join(' | ') : 'none'}`);
+await page.evaluate(() => window.maxlWorkbench.send({ type: 'job-cancel' }));
+await page.waitForFunction(() => ['cancelled', 'done', 'failed'].includes(window.maxlWorkbench.job?.phase), null, { timeout: 60_000 });
+
+// 2. A 1 000 000-segment job, shown in the view.
+await resetInstruments();
+const showMillionMs = await page.evaluate(
+  () =>
+    new Promise((resolve) => {
+      const t0 = performance.now();
+      window.maxlWorkbench.startJob({ name: 'bench 1M', pattern: 'spiral', segments: 1_000_000, size_mm: 150, maxVelocity: 25 });
+      const check = () => {
+        if (window.maxlView.stats.previewSegments === 1_000_000) {
+          // Drawn in this frame's task; the next frame is on screen.
+          requestAnimationFrame(() => resolve(performance.now() - t0));
+        } else requestAnimationFrame(check);
+      };
+      check();
+    }),
+);
+const million = await readInstruments();
+console.error(`[ui] 1 000 000 segments shown in ${showMillionMs.toFixed(0)} ms (longest task then ${million.longest.toFixed(0)} ms)`);
+await page.evaluate(() => window.maxlWorkbench.send({ type: 'job-cancel' }));
+await page.waitForFunction(() => ['cancelled', 'failed', 'done', 'halted'].includes(window.maxlWorkbench.job?.phase), null, { timeout: 60_000 });
+console.error(`[ui] the 1M job ended: ${await page.evaluate(() => window.maxlWorkbench.job.phase)}`);
+
+// 3. Hold-to-jog: hold → for 1 s, release, read the stop the worker measured.
+await page.evaluate(() => window.maxlWorkbench.send({ type: 'go-to-origin', speed: 100 }));
+await page.waitForFunction(() => window.maxlWorkbench.speed === 0 && Math.abs(window.maxlWorkbench.position[0]) < 1e-6, null, { timeout: 60_000 });
+await page.keyboard.down('ArrowRight');
+await delay(1000);
+await page.keyboard.up('ArrowRight');
+await page.waitForFunction(() => window.maxlWorkbench.jogReport !== null, null, { timeout: 10_000 });
+const jog = await page.evaluate(() => window.maxlWorkbench.jogReport);
+
+await browser.close();
+stopServer();
+const result = {
+  bench: 'ui',
+  longestTaskMs: Math.round(stream.longest * 10) / 10,
+  longTasks: stream.count,
+  maxFrameGapMs: Math.round(stream.maxGap * 10) / 10,
+  fps: Math.round(stream.fps * 10) / 10,
+  showMillionMs: Math.round(showMillionMs),
+  showMillionLongestTaskMs: Math.round(million.longest * 10) / 10,
+  streamedSegments: job.doneSegments - done0,
+  streamSeconds: Math.round(stream.elapsed * 10) / 10,
+  jobSegments: 100_000,
+  streamErrors: errors.length,
+  jogSpeedMmPerS: jog.speed,
+  jogBrakeLatencyMs: Math.round(jog.brakeLatency_ms * 10) / 10,
+  jogRestLatencyMs: Math.round(jog.restLatency_ms * 10) / 10,
+  jogLeadMs: Math.round(jog.lead_ms * 10) / 10,
+  jogDeliveryMs: Math.round(jog.delivery_ms * 10) / 10,
+  targets: { longestTaskMs: 50, showMillionMs: 2000 },
+};
+console.log(JSON.stringify(result));
+process.exit(0);

@@ -1,0 +1,55 @@
+/**
+ * Run a small job with a progress bar and ETA; pause (the tool comes to rest on
+ * the path and stays), resume (it goes on), cancel (it stops on the path, the rest
+ * is dropped).
+ */
+import { expect, test } from '@playwright/test';
+import { dataNumber, openWorkbench, screenshot, snapshotsPass, waitAtRest } from './support/workbench.ts';
+
+test('a small job: progress, pause, resume, cancel', async ({ page }) => {
+  await openWorkbench(page);
+  await page.getByTestId('job-pattern').selectOption('spiral');
+  await page.getByTestId('job-segments').fill('400');
+  await page.getByTestId('job-size').fill('60');
+  await page.getByTestId('job-speed').fill('40');
+  await page.getByTestId('job-start').click();
+
+  const progress = page.getByTestId('job-progress');
+  await expect(progress).toHaveAttribute('data-phase', 'running');
+  await expect(progress).toHaveAttribute('data-total', '400');
+  // The whole job is in the view at once.
+  await expect(page.getByTestId('legend')).toHaveAttribute('data-preview', '400');
+  await expect.poll(() => dataNumber(page, 'job-progress', 'data-done'), { timeout: 30_000 }).toBeGreaterThan(40);
+  await expect(page.getByTestId('job-eta')).toHaveText(/ETA \d+ (s|min)/);
+  await screenshot(page, '06-job-running');
+
+  // Pause: brakes to rest on the path and holds.
+  await page.getByTestId('job-pause').click();
+  await expect(progress).toHaveAttribute('data-phase', 'paused');
+  const held = await waitAtRest(page, 15);
+  const doneAtPause = await dataNumber(page, 'job-progress', 'data-done');
+  await snapshotsPass(page, 30);
+  expect(await dataNumber(page, 'pos-x')).toBe(held[0]);
+  expect(await dataNumber(page, 'pos-y')).toBe(held[1]);
+  expect(await dataNumber(page, 'job-progress', 'data-done')).toBe(doneAtPause);
+  await screenshot(page, '07-job-paused');
+
+  // Resume: it goes on from there.
+  await page.getByTestId('job-resume').click();
+  await expect(progress).toHaveAttribute('data-phase', 'running');
+  await expect.poll(() => dataNumber(page, 'job-progress', 'data-done'), { timeout: 30_000 }).toBeGreaterThan(doneAtPause + 20);
+
+  // Cancel: stops on the path; the rest of the job is dropped.
+  await page.getByTestId('job-cancel').click();
+  await expect(progress).toHaveAttribute('data-phase', 'cancelled');
+  await waitAtRest(page, 15);
+  const done = await dataNumber(page, 'job-progress', 'data-done');
+  expect(done).toBeLessThan(400);
+  await snapshotsPass(page, 30);
+  expect(await dataNumber(page, 'job-progress', 'data-done')).toBe(done);
+  await expect(page.getByTestId('speed')).toHaveText('0.0 mm/s');
+  await expect(page.locator('[data-testid=log-entry][data-code=JOB]').last()).toContainText('cancelled');
+  // Nothing the machine refused along the way.
+  await expect(page.locator('[data-testid=log-entry][data-code=DEVICE_REFUSED]')).toHaveCount(0);
+  await expect(page.locator('[data-testid=log-entry][data-code=LINK_LOST]')).toHaveCount(0);
+});
