@@ -34,4 +34,11 @@ export const suites = [
     command: ['bash', 'scripts/firmware-fuzz.sh', '25'],
     tools: ['clang++'],
   },
+  {
+    name: 'e2e',
+    describe: 'Playwright in Debian chromium: the workbench on the simulated machine (configure, jog, job, STOP) and the WebSerial path through a fake navigator.serial',
+    command: ['npx', 'playwright', 'test'],
+    env: { CI: '1' },
+    tools: ['chromium'],
+  },
 ];

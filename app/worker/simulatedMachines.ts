@@ -22,6 +22,9 @@ export function presetConfig(id: string): MachineConfig {
   return make().config as MachineConfig;
 }
 
+/** µs between device loop() calls while busy, in the browser (the presets' default is 20). */
+const BROWSER_LOOP_PERIOD_US = 100;
+
 const loader = fetchWasmLoader(new URL('/firmware/', self.location.href).href);
 
 export async function startSimulatedMachine(id: string, scheduler: Scheduler, onError: (err: unknown) => void): Promise<SimulatedMachine> {
@@ -30,7 +33,9 @@ export async function startSimulatedMachine(id: string, scheduler: Scheduler, on
   const preset = make();
   // The page runs for hours: keep no per-sample ground truth.
   if (preset.plant.accelerometer) preset.plant.accelerometer = { ...preset.plant.accelerometer, recordSamples: false };
-  return createSimulatedMachine(preset, scheduler, { loader, onError, seed: 1 });
+  // Device loops every 100 µs rather than the presets' 20: in real time every loop
+  // costs this worker CPU, and a busy worker delays the author's own timers.
+  return createSimulatedMachine(preset, scheduler, { loader, onError, seed: 1, loopPeriod_us: BROWSER_LOOP_PERIOD_US });
 }
 
 /** Ground truth for the page: each motor's step count. */
