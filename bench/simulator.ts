@@ -44,7 +44,7 @@ async function idle() {
     let seq = 1;
     const ping = () => {
       pingSentAt.set(`${name}/${seq & 0xffff}`, s.now());
-      client.send(seq & 0xff, { type: 'PING', pingId: seq & 0xffff });
+      client.send(seq & 0xff, { type: 'PING', pingId: seq & 0xffff, replyAfter: 0 });
       seq++;
       if (s.now() + pingEvery_us < end_us) s.after(pingEvery_us, ping);
     };

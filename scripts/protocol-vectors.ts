@@ -57,8 +57,8 @@ function invalid(name: string, frame: Uint8Array, error: string, context = ctx()
 export function buildVectors(): { protocol: number; vectors: Vector[] } {
   const v: Vector[] = [
     valid('hello request', 0, { type: 'HELLO_REQUEST', protocol: PROTOCOL_VERSION }),
-    valid('ping', 5, { type: 'PING', pingId: 0x0102 }),
-    valid('ping whose packet holds zeros (COBS at work)', 0, { type: 'PING', pingId: 0 }),
+    valid('ping', 5, { type: 'PING', pingId: 0x0102, replyAfter: 1500 }),
+    valid('ping whose packet holds zeros (COBS at work)', 0, { type: 'PING', pingId: 0, replyAfter: 0 }),
     valid('clock with a negative rate', 17, { type: 'CLOCK', deviceRef: 0xfffffff0, authorRef: 123456789, ratePpb: -150000 }),
     valid('subscribe', 2, { type: 'SUBSCRIBE', reader: 1, kind: 1, slot: 0 }),
     valid(
@@ -143,7 +143,7 @@ export function buildVectors(): { protocol: number; vectors: Vector[] } {
     ),
   ];
 
-  const ping = encodeFrame(5, { type: 'PING', pingId: 0x0102 });
+  const ping = encodeFrame(5, { type: 'PING', pingId: 0x0102, replyAfter: 1500 });
   const flipped = Uint8Array.from(ping);
   flipped[3] ^= 0x01; // a data byte; COBS stays valid, the CRC does not
   v.push(
@@ -154,8 +154,8 @@ export function buildVectors(): { protocol: number; vectors: Vector[] } {
     invalid('more than 65 bytes before a delimiter', Uint8Array.from([...new Array(70).fill(0x11), 0x00]), 'TOO_LONG'),
     invalid('unknown message type', rawFrame([1, 0x30]), 'UNKNOWN_MESSAGE'),
     invalid('unknown device-bound type', rawFrame([1, 0x7f, 1, 2]), 'UNKNOWN_MESSAGE'),
-    invalid('ping payload too short', rawFrame([1, 0x02, 0x01]), 'MALFORMED'),
-    invalid('ping with a byte left over', rawFrame([1, 0x02, 0x01, 0x02, 0x03]), 'MALFORMED'),
+    invalid('ping payload too short (the 2-byte ping of an early draft)', rawFrame([1, 0x02, 0x01, 0x02]), 'MALFORMED'),
+    invalid('ping with a byte left over', rawFrame([1, 0x02, 0x01, 0x02, 0xdc, 0x05, 0x03]), 'MALFORMED'),
     invalid('timing with a six-byte varint', rawFrame([1, 0x06, 1, 0, 1, 0, 0, 0, 0x80, 0x3f, 0b10, 0x80, 0x80, 0x80, 0x80, 0x80, 0x01, 0, 0, 0, 0]), 'MALFORMED'),
     invalid('timing with a varint over 32 bits', rawFrame([1, 0x06, 1, 0, 1, 0, 0, 0, 0x80, 0x3f, 0b10, 0xff, 0xff, 0xff, 0xff, 0x1f, 0, 0, 0, 0]), 'MALFORMED'),
     invalid('timing with an empty shape', rawFrame([1, 0x06, 1, 0, 1, 0, 0, 0, 0x80, 0x3f, 0, 0, 0, 0, 0]), 'MALFORMED'),

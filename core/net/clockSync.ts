@@ -21,19 +21,19 @@
  * per 1 ms frame), the fastest of n exchanges approaches the floor only like 1/√n,
  * so the envelopes use every exchange of the window at once rather than slices.
  *
- * ## The fit
+ * ## The fit, in two parts
  * For a rate r, measure everything against a line of that slope through (a₀, 0):
- *   U(r) = minᵢ ( d₁ᵢ − r·(a₁ᵢ − a₀) )       the up points' lower envelope
- *   W(r) = maxᵢ ( d₂ᵢ − r·(a₂ᵢ − a₀) )       the down points' upper envelope
- * For the true rate both envelopes are flat in time and the gap G(r) = U(r) − W(r)
- * is as wide as it gets; a wrong slope tilts the points, so an envelope point at
- * one end of the window closes the gap (Moon, Skelly and Towsley 1999 bound skew
- * with the same hulls). U is a minimum of linear functions of r (concave) and W
- * a maximum (convex), so G is concave: a ternary search finds its maximum, over
- * the vertices of the two convex hulls only (the lower hull of the up points, the
- * upper hull of the down points), which are few. The line is then
- *   D(a) = (U + W)/2 + r·(a − a₀).
- * Until the window spans a few seconds the rate is held (1 at first) and only the
+ *   u = d₁ − r·(a₁ − a₀)   (up)        w = d₂ − r·(a₂ − a₀)   (down)
+ * 1. The rate. Cut the window into slices (at least 40 exchanges or 1/12 of the
+ *    window each); in each, the up points' lowest u and the down points' highest w
+ *    bracket the line, and their midpoint m_b is one estimate of it at time t_b. A
+ *    least-squares line through the (t_b, m_b) corrects r; two passes settle it. A
+ *    constant bias of the midpoints (uneven floors) does not tilt that line, and
+ *    the scatter of many slices averages out.
+ * 2. The offset. The envelopes of every exchange in the window, at that rate:
+ *    D(a₀) = (min u + max w)/2. The more exchanges, the nearer each envelope comes
+ *    to its floor (on a link that also waits for 1 ms USB frames, only like 1/√n).
+ * Until the window spans half a second the rate is held (1 at first) and only the
  * offset is fitted.
  *
  * A one-shot offset set at start-up (the paper's method) drifts by up to 0.72 s
@@ -57,16 +57,13 @@ export interface ClockSyncOptions {
   window_us: number;
   /** hold the rate until the window spans this much (µs) */
   minSpanForRate_us: number;
-  /** search the rate within ± this of the last estimate (parts per million) */
-  rateSearch_ppm: number;
   /** refit at most this often (µs) once the model exists */
   refitEvery_us: number;
 }
 
 export const DEFAULT_CLOCK_SYNC: ClockSyncOptions = {
-  window_us: 600_000_000,
-  minSpanForRate_us: 2_000_000,
-  rateSearch_ppm: 1000,
+  window_us: 1_200_000_000,
+  minSpanForRate_us: 500_000,
   refitEvery_us: 1_000_000,
 };
 
@@ -119,7 +116,11 @@ export class ClockSync {
       this.d2 = this.d2.slice(drop);
     }
     const now = stamps.authorReceive;
-    if (this.model === null || this.samples < 32 || now - this.lastFit >= this.options.refitEvery_us) {
+    // Refit often while the window is young (the model is still converging), then
+    // less often: a settled model extrapolates well, and a refit costs O(window).
+    const age = now - this.a1[0];
+    const every = age < 10 * this.options.refitEvery_us ? this.options.refitEvery_us / 10 : age < 60 * this.options.refitEvery_us ? this.options.refitEvery_us : 10 * this.options.refitEvery_us;
+    if (this.model === null || this.samples < 32 || now - this.lastFit >= every) {
       this.fit(oldest);
       this.lastFit = now;
     }
@@ -140,7 +141,8 @@ export class ClockSync {
 
   /**
    * An estimate of the model's error (µs): how far the offset would move if only
-   * the most recent quarter of the window were used. Infinity before a model.
+   * the last quarter of the window's exchanges were used. Infinity before a model.
+   * It cannot see a constant asymmetry of the link (nothing can).
    */
   get errorEstimate_us(): number {
     return this.model === null ? Infinity : this.spread;
@@ -155,30 +157,67 @@ export class ClockSync {
   private fit(oldest: number): void {
     let first = 0;
     while (first < this.a1.length - 1 && this.a1[first] < oldest) first++;
+    const n = this.a1.length - first;
     const a0 = this.a2[this.a2.length - 1]; // reference: the newest exchange
+    const span = a0 - this.a1[first];
+    let rate = this.model?.rate ?? 1;
     const up = lowerHull(this.a1, this.d1, first, a0);
     const down = upperHull(this.a2, this.d2, first, a0);
-    const gapAt = (r: number) => envelope(up, r, Math.min) - envelope(down, r, Math.max);
-    let rate = this.model?.rate ?? 1;
-    const span = this.a2[this.a2.length - 1] - this.a1[first];
-    if (span >= this.options.minSpanForRate_us) {
-      let lo = rate - this.options.rateSearch_ppm * 1e-6;
-      let hi = rate + this.options.rateSearch_ppm * 1e-6;
-      for (let k = 0; k < 80; k++) {
-        const m1 = lo + (hi - lo) / 3;
-        const m2 = hi - (hi - lo) / 3;
-        if (gapAt(m1) < gapAt(m2)) lo = m1;
-        else hi = m2;
+    if (span >= this.options.minSpanForRate_us && n >= 24) {
+      // Least squares over slice midpoints: a robust rate.
+      const perSlice = Math.max(40, Math.ceil(n / 12));
+      for (let pass = 0; pass < 2; pass++) {
+        const t: number[] = [];
+        const m: number[] = [];
+        for (let i = first; i < this.a1.length; i += perSlice) {
+          const end = Math.min(this.a1.length, i + perSlice);
+          if (end - i < perSlice / 2) break;
+          let U = Infinity;
+          let W = -Infinity;
+          let tU = 0;
+          let tW = 0;
+          for (let k = i; k < end; k++) {
+            const u = this.d1[k] - rate * (this.a1[k] - a0);
+            const w = this.d2[k] - rate * (this.a2[k] - a0);
+            if (u < U) ((U = u), (tU = this.a1[k]));
+            if (w > W) ((W = w), (tW = this.a2[k]));
+          }
+          t.push((tU + tW) / 2 - a0);
+          m.push((U + W) / 2);
+        }
+        if (t.length < 3) break;
+        let mt = 0;
+        let mm = 0;
+        for (let k = 0; k < t.length; k++) ((mt += t[k]), (mm += m[k]));
+        mt /= t.length;
+        mm /= t.length;
+        let stt = 0;
+        let stm = 0;
+        for (let k = 0; k < t.length; k++) ((stt += (t[k] - mt) ** 2), (stm += (t[k] - mt) * (m[k] - mm)));
+        if (stt <= 0) break;
+        rate += stm / stt;
       }
-      rate = (lo + hi) / 2;
     }
     const offset = (envelope(up, rate, Math.min) + envelope(down, rate, Math.max)) / 2;
     this.model = new ClockMap(a0, offset, rate);
-    // Error estimate: how far the recent quarter's envelopes alone would move the offset.
-    const recent = Math.max(first, this.a1.length - Math.max(8, (this.a1.length - first) >> 2));
-    const U4 = envelope(lowerHull(this.a1, this.d1, recent, a0), rate, Math.min);
-    const W4 = envelope(upperHull(this.a2, this.d2, recent, a0), rate, Math.max);
-    this.spread = Math.abs((U4 + W4) / 2 - offset);
+    // Error estimate: how far the last quarter's envelopes alone would put the offset.
+    const recent = this.firstSentAfter(a0 - span / 4);
+    if (recent < this.a1.length - 8) {
+      const alone = (envelope(lowerHull(this.a1, this.d1, recent, a0), rate, Math.min) + envelope(upperHull(this.a2, this.d2, recent, a0), rate, Math.max)) / 2;
+      this.spread = Math.abs(alone - offset);
+    }
+  }
+
+  /** Index of the first exchange sent at or after author time t. */
+  private firstSentAfter(t: number): number {
+    let lo = 0;
+    let hi = this.a1.length;
+    while (lo < hi) {
+      const mid = (lo + hi) >> 1;
+      if (this.a1[mid] < t) lo = mid + 1;
+      else hi = mid;
+    }
+    return lo;
   }
 }
 

@@ -50,9 +50,10 @@ describe('COBS', () => {
 
 describe('frames', () => {
   it('matches a PING frame assembled by hand (CRC from Python binascii.crc_hqx)', () => {
-    // seq 5, type 0x02, pingId 0x0102 little-endian, CRC 0x20A6 little-endian, COBS code 7, delimiter.
-    expect(hex(encodeFrame(5, { type: 'PING', pingId: 0x0102 }))).toBe('0705020201a62000');
-    expect(decodeFrame(bytes('0705020201a62000'), { positionSlots: 0, channels: 0 })).toEqual({ seq: 5, message: { type: 'PING', pingId: 0x0102 } });
+    // seq 5, type 0x02, pingId 0x0102 and replyAfter 1500 little-endian, CRC 0xD325 little-endian,
+    // COBS code 9, delimiter.
+    expect(hex(encodeFrame(5, { type: 'PING', pingId: 0x0102, replyAfter: 1500 }))).toBe('0905020201dc0525d300');
+    expect(decodeFrame(bytes('0905020201dc0525d300'), { positionSlots: 0, channels: 0 })).toEqual({ seq: 5, message: { type: 'PING', pingId: 0x0102, replyAfter: 1500 } });
   });
 
   it('refuses to build a packet over 64 bytes', () => {

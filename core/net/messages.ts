@@ -34,7 +34,7 @@ export interface SensorSample {
 
 export type Message =
   | { type: 'HELLO_REQUEST'; protocol: number }
-  | { type: 'PING'; pingId: number }
+  | { type: 'PING'; pingId: number; replyAfter: number }
   | { type: 'CLOCK'; deviceRef: number; authorRef: number; ratePpb: number }
   | { type: 'SUBSCRIBE'; reader: number; kind: number; slot: number }
   | { type: 'GEOMETRY'; firstId: number; count: number; flags: number; p0?: number[]; segments: GeometrySegment[] }
@@ -86,7 +86,7 @@ export function encodePayload(m: Message): Uint8Array {
       w.u8(m.protocol);
       break;
     case 'PING':
-      w.u16(m.pingId);
+      w.u16(m.pingId).u16(m.replyAfter);
       break;
     case 'CLOCK':
       w.u32(m.deviceRef).u32(m.authorRef).i32(m.ratePpb);
@@ -192,7 +192,7 @@ function readMessage(type: MessageTypeName, r: ByteReader, ctx: DecodeContext): 
     case 'HELLO_REQUEST':
       return { type, protocol: r.u8() };
     case 'PING':
-      return { type, pingId: r.u16() };
+      return { type, pingId: r.u16(), replyAfter: r.u16() };
     case 'CLOCK':
       return { type, deviceRef: r.u32(), authorRef: r.u32(), ratePpb: r.i32() };
     case 'SUBSCRIBE':

@@ -125,7 +125,9 @@ export class Runtime {
       }
     }
     // Let the clock models see enough exchanges for a rate before anything is timed.
-    await this.scheduler.sleep(this.options.syncBeforeStart_us ?? 1_000_000);
+    const sync = this.options.syncBeforeStart_us ?? 1_000_000;
+    for (const s of this.sessions) s.pingBurst(sync + 1_000_000);
+    await this.scheduler.sleep(sync);
     for (const s of this.sessions) this.emit({ type: 'device', device: s.label, state: 'open' });
 
     const bindings = plans

@@ -52,6 +52,8 @@ export interface SessionOptions {
   silence_us: number;
   /** ping period (µs) during a session */
   pingEvery_us: number;
+  /** ping period (µs) during a burst (pingBurst), to fit a clock model quickly */
+  burstPingEvery_us: number;
   /** unacknowledged frames in flight at most */
   window: number;
 }
@@ -60,7 +62,8 @@ export const DEFAULT_SESSION: SessionOptions = {
   helloTimeout_us: 1_000_000,
   resendAfter_us: 4_000,
   silence_us: 300_000,
-  pingEvery_us: 20_000,
+  pingEvery_us: 10_000,
+  burstPingEvery_us: 4_000,
   window: 8,
 };
 
@@ -113,6 +116,8 @@ export class DeviceSession {
   private pendingHello: { resolve(info: DeviceInfo): void; reject(err: Error): void; hello?: MessageOf<'HELLO'>; readers: ReaderInfo[] } | null = null;
   private pings = new Map<number, number>();
   private lastHelloRequestAt = -Infinity;
+  private burstUntil = -Infinity;
+  private openedAt = 0;
   private nextPingId = 1;
 
   constructor(link: Link, scheduler: Scheduler, events: SessionEvents = {}, options: Partial<SessionOptions> = {}) {
@@ -166,6 +171,7 @@ export class DeviceSession {
     });
     this.info = info;
     this.state = 'open';
+    this.openedAt = this.scheduler.now();
     this.schedulePing();
     this.scheduleHealth();
     return info;
@@ -192,6 +198,11 @@ export class DeviceSession {
   /** The resend timeout in force (µs). */
   get resendAfter_us(): number {
     return Math.max(this.options.resendAfter_us, 2 * (this.clock.rttHigh || 0));
+  }
+
+  /** Pings five times as often for `duration_us`, so the clock model converges quickly (begin() does this). */
+  pingBurst(duration_us: number): void {
+    this.burstUntil = this.scheduler.now() + duration_us;
   }
 
   /** Frames queued or in flight. */
@@ -421,9 +432,15 @@ export class DeviceSession {
       if (this.backlog < this.options.window) {
         const pingId = this.nextPingId;
         this.nextPingId = (this.nextPingId % 0xffff) + 1;
-        void this.send({ type: 'PING', pingId });
+        // The reply waits 0–2 ms: see PING in docs/protocol.md §4.
+        void this.send({ type: 'PING', pingId, replyAfter: Math.floor(random() * 2000) });
       }
-      this.timers.push(this.scheduler.after(this.options.pingEvery_us * (0.75 + 0.5 * random()), tick));
+      // Fast while the model is young (it converges with the number of exchanges),
+      // then at the session's pace: burstPingEvery_us for the first ten minutes, then pingEvery_us.
+      const age = this.scheduler.now() - this.openedAt;
+      const young = age < 600_000_000 || this.scheduler.now() < this.burstUntil ? this.options.burstPingEvery_us : Infinity;
+      const every = Math.min(young, this.options.pingEvery_us);
+      this.timers.push(this.scheduler.after(every * (0.75 + 0.5 * random()), tick));
     };
     tick();
   }

@@ -66,7 +66,7 @@ describe.each(Object.keys(PRESETS))('simulated %s', (presetId) => {
       const { s, sim, clients } = await boot(presetId, seed);
       for (const client of Object.values(clients)) {
         s.at(3000, () => client.send(0, { type: 'HELLO_REQUEST', protocol: PROTOCOL_VERSION }));
-        for (let k = 1; k <= 20; k++) s.at(3000 + k * 7000, () => client.send(k, { type: 'PING', pingId: k }));
+        for (let k = 1; k <= 20; k++) s.at(3000 + k * 7000, () => client.send(k, { type: 'PING', pingId: k, replyAfter: 0 }));
       }
       await s.runUntil(200_000);
       await sim.stop();

@@ -46,7 +46,7 @@ seeds = {
     'starve': hello + subs + geometry + frame('TIMING', u16(0) + bytes([1, 1]) + f32(500.0) + u32(start) + bytes([0x02, 0x90, 0x4e]) + f32(0.0)) + advance(200000) + loops(8, 255),
     'halt': hello + subs + geometry + timing + advance(30000) + frame('HALT', bytes([1]) + u32(start + 40000)) + advance(100000) + loops(4, 10),
     'replace': hello + subs + geometry + timing + frame('REPLACE_TAIL', u16(1)) + frame('STATUS_REQUEST', b''),
-    'ping-clock': hello + frame('PING', u16(7)) + frame('CLOCK', u32(1) + u32(2) + i32(-300)),
+    'ping-clock': hello + frame('PING', u16(7) + u16(300)) + frame('CLOCK', u32(1) + u32(2) + i32(-300)),
     'raw-garbage': bytes([0, 40]) + bytes(range(1, 41)) + bytes([0, 2, 0, 0]),
 }
 here = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'corpus')

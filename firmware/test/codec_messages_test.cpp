@@ -18,7 +18,7 @@ std::vector<uint8_t> bytesOf(const M& m) {
 
 TEST(Messages, FixedSizesMatchTheSpec) {
   EXPECT_EQ(bytesOf(msg::HelloRequest{1}).size(), 1u);
-  EXPECT_EQ(bytesOf(msg::Ping{1}).size(), 2u);
+  EXPECT_EQ(bytesOf(msg::Ping{1, 0}).size(), 4u);
   EXPECT_EQ(bytesOf(msg::Clock{1, 2, 3}).size(), 12u);
   EXPECT_EQ(bytesOf(msg::Subscribe{1, 2, 3}).size(), 3u);
   EXPECT_EQ(bytesOf(msg::ReplaceTail{1}).size(), 2u);
@@ -32,9 +32,9 @@ TEST(Messages, FixedSizesMatchTheSpec) {
 TEST(Messages, WrongLengthsAreMalformed) {
   msg::DecodeContext ctx{0, 0};
   uint8_t buf[20] = {0};
-  EXPECT_EQ(msg::checkPayload(type::PING, buf, 2, ctx), CODEC_OK);
-  EXPECT_EQ(msg::checkPayload(type::PING, buf, 1, ctx), CODEC_MALFORMED);
-  EXPECT_EQ(msg::checkPayload(type::PING, buf, 3, ctx), CODEC_MALFORMED);
+  EXPECT_EQ(msg::checkPayload(type::PING, buf, 4, ctx), CODEC_OK);
+  EXPECT_EQ(msg::checkPayload(type::PING, buf, 2, ctx), CODEC_MALFORMED);
+  EXPECT_EQ(msg::checkPayload(type::PING, buf, 5, ctx), CODEC_MALFORMED);
   EXPECT_EQ(msg::checkPayload(type::STATUS_REQUEST, buf, 0, ctx), CODEC_OK);
   EXPECT_EQ(msg::checkPayload(type::STATUS_REQUEST, buf, 1, ctx), CODEC_MALFORMED);
   EXPECT_EQ(msg::checkPayload(type::HALT, buf, 5, ctx), CODEC_OK);

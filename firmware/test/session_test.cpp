@@ -13,7 +13,7 @@ void event(float) {}
 
 TEST(Session, NothingIsHandledBeforeHelloRequest) {
   Harness h;
-  Answer a = h.exchange(h.author.raw(type::PING, {1, 0}));
+  Answer a = h.exchange(h.author.raw(type::PING, {1, 0, 0, 0}));
   EXPECT_EQ(a.reason, nack::OUT_OF_ORDER);
   EXPECT_EQ(a.detail, nack::NO_SESSION_DETAIL);
 }
@@ -136,7 +136,7 @@ TEST(Session, BadFramesGetBadCrcWithTheExpectedSeq) {
 TEST(Session, MalformedAndUnknownAdvanceExpected) {
   Harness h;
   h.open({});
-  Answer a = h.exchange(h.author.raw(type::PING, {1}));
+  Answer a = h.exchange(h.author.raw(type::PING, {1, 0}));  // the old 2-byte PING
   EXPECT_EQ(a.reason, nack::MALFORMED);
   EXPECT_EQ(a.detail, type::PING);
   Answer b = h.exchange(h.author.raw(0x30, {}));
@@ -168,6 +168,31 @@ TEST(Session, PongStampsTheDelimiterArrival) {
   EXPECT_EQ(pong.rxTime, 1000250u);
   EXPECT_EQ(pong.txTime, 1000250u);
   EXPECT_EQ(p[1].type, type::ACK);
+}
+
+TEST(Session, PongWaitsReplyAfterAndSaysWhenItLeft) {
+  Harness h;
+  h.open({});
+  Bytes ping = h.author.ping(0x1234, 700);
+  h.at(2000000);
+  h.send(ping);
+  std::vector<Packet> first = h.take();
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_EQ(first[0].type, type::ACK);  // acked now, answered later
+  EXPECT_FALSE(h.device->idle());       // a PONG is waiting: keep looping
+  h.at(2000699);
+  h.loop();
+  EXPECT_TRUE(h.take().empty());
+  h.at(2000712);
+  h.loop();
+  std::vector<Packet> later = h.take();
+  ASSERT_EQ(later.size(), 1u);
+  ASSERT_EQ(later[0].type, type::PONG);
+  msg::Pong pong;
+  ASSERT_TRUE(msg::parse(later[0].payload.data(), (uint8_t)later[0].payload.size(), pong));
+  EXPECT_EQ(pong.pingId, 0x1234);
+  EXPECT_EQ(pong.rxTime, 2000000u);
+  EXPECT_EQ(pong.txTime, 2000712u);  // when it really went
 }
 
 TEST(Session, ClockGivesMachineTime) {

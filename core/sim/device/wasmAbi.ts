@@ -34,6 +34,8 @@ export const ExportNames = {
   idle: ['maxl_idle', 'maxl_is_idle'],
   rxBuffer: ['maxl_rx_buffer'],
   rxPush: ['maxl_rx_push'],
+  /** Optional: µs until the firmware next has something to do (0 now, 0xFFFFFFFF nothing), to sleep a device until then. */
+  wakeAfter: ['maxl_wake_after'],
   /** Optional: bytes still in the receive ring. Without it the host estimates (see WasmDevice). */
   rxPending: ['maxl_rx_pending', 'maxl_rx_available'],
 } as const;
@@ -47,6 +49,7 @@ export interface FirmwareExports {
   setup: () => void;
   loop: () => void;
   idle: (() => number) | null;
+  wakeAfter: (() => number) | null;
   rxBuffer: () => number;
   rxPush: (length: number) => number;
   rxPending: (() => number) | null;
@@ -71,6 +74,7 @@ export function resolveExports(instance: WebAssembly.Instance, label: string): F
     setup: required<() => void>('setup'),
     loop: required<() => void>('loop'),
     idle: (find(ExportNames.idle) as (() => number) | undefined) ?? null,
+    wakeAfter: (find(ExportNames.wakeAfter) as (() => number) | undefined) ?? null,
     rxBuffer: required<() => number>('rxBuffer'),
     rxPush: required<(n: number) => number>('rxPush'),
     rxPending: (find(ExportNames.rxPending) as (() => number) | undefined) ?? null,

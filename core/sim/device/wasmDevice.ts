@@ -210,7 +210,11 @@ export class WasmDevice {
   }
 
   private scheduleNext(): void {
-    this.nextLoop_us = this.t_us + (this.busy ? this.loopPeriod_us : this.idleTick_us);
+    let wait = this.busy ? this.loopPeriod_us : this.idleTick_us;
+    // A firmware that says when it next has work (a delayed PONG) sleeps until then.
+    const wake = this.exports.wakeAfter && this.rxBacklog === 0 ? this.exports.wakeAfter() >>> 0 : 0;
+    if (wake > 0) wait = Math.min(this.idleTick_us, Math.max(this.loopPeriod_us, wake === 0xffffffff ? this.idleTick_us : wake));
+    this.nextLoop_us = this.t_us + wait;
   }
 
   /**

@@ -34,7 +34,7 @@ class Author {
   uint8_t seq = 0;
 
   Bytes helloRequest(uint8_t protocol = maxl_fw::PROTOCOL_VERSION);
-  Bytes ping(uint16_t pingId);
+  Bytes ping(uint16_t pingId, uint16_t replyAfter = 0);
   Bytes clock(uint32_t deviceRef, uint32_t authorRef, int32_t ratePpb);
   Bytes subscribe(uint8_t reader, uint8_t kind, uint8_t slot);
   Bytes geometry(uint16_t firstId, const std::vector<int32_t>* p0, const std::vector<GeometrySegment>& segments,

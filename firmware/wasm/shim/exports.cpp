@@ -18,4 +18,10 @@ __attribute__((export_name("maxl_idle"))) uint32_t maxl_idle(void) {
   MAXL_Device* device = MAXL_Device::instance();
   return device ? (device->idle() ? 1 : 0) : 1;
 }
+// µs until maxl_loop next has something to do without new input: 0 for now (loop
+// at the busy period), 0xFFFFFFFF for nothing at all (see MAXL_Device::wakeAfter()).
+__attribute__((export_name("maxl_wake_after"))) uint32_t maxl_wake_after(void) {
+  MAXL_Device* device = MAXL_Device::instance();
+  return device ? device->wakeAfter() : 0xFFFFFFFFu;
+}
 }

@@ -27,6 +27,10 @@ MAXL_Device::MAXL_Device(const char* name)
       velocityValid_(false),
       accelerationValid_(false),
       statusPending_(false),
+      pongPending_(false),
+      pongId_(0),
+      pongReceivedAt_(0),
+      pongDueAt_(0),
       txPacing_(MAXL_TX_BYTES_PER_LOOP),
       txSent_(0),
       txLength_(0) {
@@ -55,6 +59,7 @@ void MAXL_Device::resetSession() {
   flags_ = 0;
   lastState_ = motion_.statusState();
   statusPending_ = false;
+  pongPending_ = false;
 }
 
 void MAXL_Device::loop() {
@@ -68,6 +73,7 @@ void MAXL_Device::loop() {
     if (r->subscribed()) r->onTick(*this);
   fireEvents();
   if (motion_.takeStarved()) flags_ |= status_flag::STARVED;
+  if (pongPending_ && timeDiff(now_, pongDueAt_) >= 0 && !rx_.inFrame() && txLength_ == 0) sendPong(true);
   reportStatus();
 }
 
@@ -112,7 +118,16 @@ void MAXL_Device::reportStatus() {
   if (statusPending_ && !rx_.inFrame() && txLength_ == 0) sendStatus();
 }
 
-bool MAXL_Device::idle() const {
+uint32_t MAXL_Device::wakeAfter() const {
+  if (!idleBesidesPong()) return 0;
+  if (!pongPending_) return 0xFFFFFFFFul;
+  int32_t wait = timeDiff(pongDueAt_, now_);
+  return wait > 0 ? (uint32_t)wait : 0;
+}
+
+bool MAXL_Device::idle() const { return !pongPending_ && idleBesidesPong(); }
+
+bool MAXL_Device::idleBesidesPong() const {
   if (txLength_ || statusPending_) return false;
   if (motion_.statusState() != state::IDLE || motion_.queue().timed() > 0 || events_.count() > 0) return false;
   for (const MAXL_Reader* r = MAXL_Reader::first(); r; r = r->next())

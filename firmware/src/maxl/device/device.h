@@ -54,6 +54,10 @@ class MAXL_Device {
   // Nothing is due before new input arrives: no timing, no braking, no
   // pending event, no subscribed sensor. The simulator calls loop() rarely then.
   bool idle() const;
+  // µs until loop() next has something to do, without new input: 0 when it has
+  // work now, 0xFFFFFFFF when nothing is due at all. A board ignores this; the
+  // simulator uses it to sleep a device until a delayed PONG is due.
+  uint32_t wakeAfter() const;
 
   // ---- for readers
   bool positionKnown(uint8_t slot) const { return slot < motion_.knownSlots(); }
@@ -100,6 +104,8 @@ class MAXL_Device {
   void sendHello();
   void sendReader(uint8_t index);
   void sendStatus();
+  bool idleBesidesPong() const;
+  void sendPong(bool paced);
   maxl_fw::ByteWriter& beginFrame(uint8_t type);
   void sendFrame();
   void sendFramePaced();
@@ -147,6 +153,10 @@ class MAXL_Device {
   bool velocityValid_;
   bool accelerationValid_;
   bool statusPending_;  // a STATUS is due but a frame was arriving
+  bool pongPending_;    // a PONG waits for its reply time (PING replyAfter)
+  uint16_t pongId_;
+  uint32_t pongReceivedAt_;
+  uint32_t pongDueAt_;
   uint8_t txPacing_;
   uint8_t txSent_;      // bytes of the paced frame in frameBuffer_ already written
   uint8_t txLength_;    // its length; 0 when nothing is pending

@@ -34,13 +34,20 @@ MAXL_Device::Answer MAXL_Device::handle(uint8_t t, const uint8_t* p, uint8_t n) 
   }
 }
 
-// PONG before the ACK: txTime is as close to rxTime as it can be.
+// The PONG goes out replyAfter µs after the ping arrived (at once, before the
+// ACK, when 0). The author draws replyAfter at random: on a link that moves data
+// in fixed slots (USB frames), a reply sent at a fixed phase after a slot-aligned
+// arrival would always wait the same time for the next slot, and clock sync could
+// never see the return trip at its fastest. txTime says when it really went.
 MAXL_Device::Answer MAXL_Device::onPing(const uint8_t* p, uint8_t n) {
   msg::Ping m;
   if (!msg::parse(p, n, m)) return nack(nack::MALFORMED, type::PING);
-  msg::Pong pong = {m.pingId, rx_.arrivedAt(), hal::micros()};
-  msg::write(beginFrame(type::PONG), pong);
-  sendFrame();
+  if (pongPending_) sendPong(false);  // one waits at a time: the older one goes now
+  pongId_ = m.pingId;
+  pongReceivedAt_ = rx_.arrivedAt();
+  pongDueAt_ = pongReceivedAt_ + m.replyAfter;
+  pongPending_ = true;
+  if (m.replyAfter == 0) sendPong(false);
   return ack();
 }
 

@@ -148,6 +148,17 @@ void MAXL_Device::sendReader(uint8_t index) {
   sendFrame();
 }
 
+// The PONG of the last ping: at once from a handler (`paced` false: the frame
+// buffer is free once the ping was parsed), or from loop() when its reply time
+// has come, paced out like STATUS.
+void MAXL_Device::sendPong(bool paced) {
+  msg::Pong pong = {pongId_, pongReceivedAt_, hal::micros()};
+  msg::write(beginFrame(type::PONG), pong);
+  if (paced) sendFramePaced();
+  else sendFrame();
+  pongPending_ = false;
+}
+
 void MAXL_Device::sendStatus() {
   msg::Status s;
   s.now = now_;

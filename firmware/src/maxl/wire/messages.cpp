@@ -23,6 +23,7 @@ bool parse(const uint8_t* p, uint8_t n, HelloRequest& m) {
 bool parse(const uint8_t* p, uint8_t n, Ping& m) {
   ByteReader r(p, n);
   m.pingId = r.u16();
+  m.replyAfter = r.u16();
   return r.atEnd();
 }
 bool parse(const uint8_t* p, uint8_t n, Clock& m) {
@@ -51,7 +52,10 @@ bool parse(const uint8_t* p, uint8_t n, Halt& m) {
   return r.atEnd();
 }
 void write(ByteWriter& w, const HelloRequest& m) { w.u8(m.protocol); }
-void write(ByteWriter& w, const Ping& m) { w.u16(m.pingId); }
+void write(ByteWriter& w, const Ping& m) {
+  w.u16(m.pingId);
+  w.u16(m.replyAfter);
+}
 void write(ByteWriter& w, const Clock& m) {
   w.u32(m.deviceRef);
   w.u32(m.authorRef);

@@ -28,6 +28,7 @@ struct HelloRequest {
 };
 struct Ping {
   uint16_t pingId;
+  uint16_t replyAfter;  // µs the PONG waits after the ping arrived (clock sync dither, protocol §4)
 };
 struct Clock {
   uint32_t deviceRef;
