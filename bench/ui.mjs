@@ -90,7 +90,7 @@ const readInstruments = () =>
   });
 
 // 1. A 100 000-segment job streaming with the 3D view open.
-await page.evaluate(() => window.maxlWorkbench.startJob({ name: 'bench 100k', pattern: 'spiral', segments: 100_000, size_mm: 150, maxVelocity: 25 }));
+await page.evaluate(() => window.maxlWorkbench.startJob({ name: 'bench 100k', pattern: 'spiral', segments: 100_000, size_mm: 150, maxVelocity: 10 }));
 await page.waitForFunction(() => window.maxlWorkbench.job?.phase === 'running' && window.maxlWorkbench.job.doneSegments > 0, null, { timeout: 60_000 });
 await resetInstruments();
 const done0 = await page.evaluate(() => window.maxlWorkbench.job.doneSegments);
