@@ -50,6 +50,9 @@ export const NackReason = {
 } as const;
 export type NackReasonName = keyof typeof NackReason;
 
+/** NACK OUT_OF_ORDER with this detail: the device has no session (before HELLO_REQUEST, or after a restart). */
+export const NO_SESSION_DETAIL = 0x100;
+
 export const DeviceState = { idle: 0, running: 1, braking: 2, stopped: 3, halted: 4 } as const;
 export type DeviceStateName = keyof typeof DeviceState;
 

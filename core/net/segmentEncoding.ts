@@ -148,13 +148,17 @@ export function timingMessages(
   withStart: boolean,
   stopDecel: number,
   startAt?: number,
-): MessageOf<'TIMING'>[] & { end?: number } {
-  const out: MessageOf<'TIMING'>[] & { end?: number } = [];
+): MessageOf<'TIMING'>[] & { end?: number; spans: Array<{ start: number; length: number }> } {
+  const out: MessageOf<'TIMING'>[] & { end?: number; spans: Array<{ start: number; length: number }> } = Object.assign([], { spans: [] });
   let current: MessageOf<'TIMING'> | null = null;
   let size = 0;
   let chain = withStart ? undefined : startAt;
   segments.forEach((seg, i) => {
+    const from = chain;
     const { entry, start, end } = timingEntry(seg, clock, chain);
+    // Where the segment lies on the device's timeline: exact start, and its length in whole µs.
+    const exactStart = from ?? clock.toDeviceExact(seg.startTime_us);
+    out.spans.push({ start: exactStart, length: entry.durations.reduce((a, b) => a + b, 0) });
     chain = end;
     out.end = end;
     const entrySize = 1 + entry.durations.reduce((n, d) => n + varintSize(d), 0) + 4;

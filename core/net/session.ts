@@ -16,7 +16,7 @@ import { ClockSync } from './clockSync.ts';
 import { encodeFrame, FrameReceiver, type RawPacket } from './frame.ts';
 import type { Link } from './link.ts';
 import { decodePayload, type Message, type MessageOf, WireError } from './messages.ts';
-import { MessageType, NackReason, nameOf, PROTOCOL_VERSION, ReaderKind, type NackReasonName, type ReaderKindName } from './protocol.ts';
+import { MessageType, NackReason, nameOf, NO_SESSION_DETAIL, PROTOCOL_VERSION, ReaderKind, type NackReasonName, type ReaderKindName } from './protocol.ts';
 
 export interface ReaderInfo {
   index: number;
@@ -403,6 +403,14 @@ export class DeviceSession {
 
   private onNack(nack: MessageOf<'NACK'>): void {
     const reason = nameOf(NackReason, nack.reason) ?? 'MALFORMED';
+    if (reason === 'OUT_OF_ORDER' && nack.detail === NO_SESSION_DETAIL) {
+      // The device has no session: it restarted (and forgot its queue) without a HELLO we saw.
+      if (this.state === 'open') {
+        this.events.rebooted?.();
+        this.lose('the device restarted (it no longer knows this session)');
+      }
+      return;
+    }
     if (reason === 'BAD_CRC' || reason === 'OUT_OF_ORDER') {
       // The device expects `seq` (BAD_CRC) or `detail` (OUT_OF_ORDER): everything before it arrived.
       const expected = reason === 'OUT_OF_ORDER' ? nack.detail & 0xff : nack.seq;

@@ -365,6 +365,7 @@ export class Streamer {
       const messages = timingMessages(run, clock, this.wireIds.get(run[0]) as number, runStart, this.stopDecel(), d.timedEnd ?? undefined);
       d.timedEnd = messages.end ?? d.timedEnd;
       out.push(...messages);
+      run.forEach((seg, k) => this.queueEvents(d, seg, messages.spans[k].length));
       run = [];
     };
     for (const seg of segs) {
@@ -376,22 +377,24 @@ export class Streamer {
       }
       run.push(seg);
       d.timedEndAuthor = seg.endTime_us;
-      this.queueEvents(d, seg);
     }
     flush();
     return out;
   }
 
-  private queueEvents(d: DeviceState, seg: Segment): void {
+  /**
+   * EVENTS for a timed segment: each change at the same fraction of the segment's
+   * span on the device's timeline (`deviceLength` µs) as in the author's plan, so
+   * offsets never pass the segment's end however its timing was rounded or stretched.
+   */
+  private queueEvents(d: DeviceState, seg: Segment, deviceLength: number): void {
     if (d.binding.eventSlots.size === 0) return;
-    const clock = d.binding.session.clock.clock;
-    if (!clock) return;
-    const startDev = Math.round(clock.toDeviceExact(seg.startTime_us));
+    const scale = deviceLength / seg.duration_s; // device µs per author s within this segment
     for (const track of this.queue.eventTracksOf(seg)) {
       const slot = d.binding.eventSlots.get(track.channel);
       if (slot === undefined) continue;
       const entries = track.times.map((t, k) => ({
-        offset: Math.max(0, Math.round(clock.toDeviceExact(seg.startTime_us + t * 1e6)) - startDev),
+        offset: Math.min(deviceLength, Math.max(0, Math.round(t * scale))),
         value: track.values[k],
       }));
       // As many entries per frame as fit: header 7 bytes, each ≤ 5 + 4.

@@ -87,3 +87,48 @@ export function motorTracks(b: Bench): Array<{ motor: string; track: string; ste
 export function planned(b: Bench, track: string, t_us: number): number {
   return b.maxl.trackValue(track, t_us);
 }
+
+/** The author's clock model of a device, minus that device's true clock, at author time t (µs). */
+export function modelError_us(b: Bench, device: string, t: number): number {
+  const session = (b.maxl as unknown as { runtime: { sessions: Array<{ info: { name: string }; clock: { clock: { toDeviceExact(t: number): number } } }> } }).runtime.sessions.find(
+    (s) => s.info.name === device,
+  );
+  if (!session) throw new Error(`no session with ${device}`);
+  return session.clock.clock.toDeviceExact(t) - b.sim.devices[device].clock.deviceTimeAt(t);
+}
+
+/** µs allowed for the clock model being refitted between a segment's transmission and its execution. */
+export const REFIT_US = 25;
+
+/**
+ * Runs a job and checks, every 0.25 ms, each motor's executed position against the
+ * plan: within one step plus v·(|model error| + REFIT_US), the model error read from
+ * the simulator's true clock (see positions.test.ts). Returns the worst excess over
+ * that bound (≤ 0 passes), the worst error in plain steps, and sample counts.
+ */
+export async function runAndCheckPositions(b: Bench, moves: Move[]): Promise<{ worstExcess: number; worstSteps: number; samples: number; moving: number }> {
+  const motors = motorTracks(b).map((m) => ({ ...m, device: b.sim.preset.plant.motors.find((x) => x.name === m.motor)!.device }));
+  let worstExcess = -Infinity;
+  let worstSteps = 0;
+  let samples = 0;
+  let moving = 0;
+  await runJob(
+    b,
+    moves,
+    (t) => {
+      const steps = b.sim.plant.motorSteps();
+      for (const m of motors) {
+        const error = Math.abs(steps[m.motor] / m.stepsPerMm - planned(b, m.track, t)) * m.stepsPerMm;
+        // The track's speed, by finite difference of the plan.
+        const v = Math.abs(planned(b, m.track, t + 50) - planned(b, m.track, t - 50)) / 100e-6;
+        const bound = 1 + v * (Math.abs(modelError_us(b, m.device, t)) + REFIT_US) * 1e-6 * m.stepsPerMm;
+        worstExcess = Math.max(worstExcess, error - bound);
+        worstSteps = Math.max(worstSteps, error);
+        samples++;
+      }
+      if (b.maxl.estimate().speed > 1) moving++;
+    },
+    250,
+  );
+  return { worstExcess, worstSteps, samples, moving };
+}

@@ -13,7 +13,7 @@
  */
 import { describe, expect, it } from 'vitest';
 import { accelRig, blotPlotter, lightPainter } from '../sim/presets/index.ts';
-import { motorTracks, planned, runJob, startMachine, type Bench } from './harness.ts';
+import { motorTracks, planned, runAndCheckPositions, startMachine } from './harness.ts';
 
 const square = (x0: number, y0: number, s: number) => [
   { endPosition: [x0 + s, y0] },
@@ -22,16 +22,6 @@ const square = (x0: number, y0: number, s: number) => [
   { endPosition: [x0, y0] },
 ];
 
-const REFIT_US = 25;
-
-/** The author's clock model of a device, minus that device's true clock, at author time t (µs). */
-function modelError_us(b: Bench, device: string, t: number): number {
-  const session = (b.maxl as unknown as { runtime: { sessions: Array<{ info: { name: string }; clock: { clock: { toDeviceExact(t: number): number } } }> } }).runtime.sessions.find(
-    (s) => s.info.name === device,
-  )!;
-  return session.clock.clock.toDeviceExact(t) - b.sim.devices[device].clock.deviceTimeAt(t);
-}
-
 describe('end to end: executed positions follow the plan within one step, given the clock mapping', () => {
   it.each([
     ['blotPlotter', blotPlotter, [{ endPosition: [5, 5] }, ...square(5, 5, 30), { endPosition: [40, 12] }, { endPosition: [7, 33] }]],
@@ -39,24 +29,8 @@ describe('end to end: executed positions follow the plan within one step, given 
     ['accelRig', accelRig, [{ endPosition: [80] }, { endPosition: [10] }, { endPosition: [120] }, { endPosition: [0] }]],
   ])('%s', async (_name, preset, moves) => {
     const b = await startMachine(preset());
-    const motors = motorTracks(b).map((m) => ({ ...m, device: b.sim.preset.plant.motors.find((x) => x.name === m.motor)!.device }));
-    let worstExcess = -Infinity; // steps beyond the bound (negative: inside it)
-    let worstSteps = 0;
-    let samples = 0;
-    let moving = 0;
-    await runJob(b, moves as never, (t) => {
-      const steps = b.sim.plant.motorSteps();
-      for (const m of motors) {
-        const error = Math.abs(steps[m.motor] / m.stepsPerMm - planned(b, m.track, t)) * m.stepsPerMm;
-        // The track's speed, by finite difference of the plan.
-        const v = Math.abs(planned(b, m.track, t + 50) - planned(b, m.track, t - 50)) / 100e-6;
-        const bound = 1 + v * (Math.abs(modelError_us(b, m.device, t)) + REFIT_US) * 1e-6 * m.stepsPerMm;
-        worstExcess = Math.max(worstExcess, error - bound);
-        worstSteps = Math.max(worstSteps, error);
-        samples++;
-      }
-      if (b.maxl.estimate().speed > 1) moving++;
-    }, 250);
+    const { worstExcess, worstSteps, samples, moving } = await runAndCheckPositions(b, moves as never);
+    const motors = motorTracks(b);
     expect(moving).toBeGreaterThan(1000); // sampled every 0.25 ms through more than 0.25 s of motion
     expect(samples).toBeGreaterThan(2000);
     expect(worstExcess).toBeLessThanOrEqual(0);
