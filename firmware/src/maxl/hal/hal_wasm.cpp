@@ -29,6 +29,9 @@ __attribute__((export_name("maxl_rx_push"))) uint32_t maxl_rx_push(uint32_t leng
   }
   return n;
 }
+// Bytes received and not yet read by the library: the simulator keeps looping a
+// device while this is non-zero (the library reads at most 32 bytes per loop).
+__attribute__((export_name("maxl_rx_pending"))) uint32_t maxl_rx_pending(void) { return rxCount; }
 }
 
 namespace maxl_fw {
