@@ -221,11 +221,35 @@ export class Runtime {
 
   private onStreamer(e: StreamerEvent): void {
     if (e.type === 'conflict') this.emit({ type: 'error', error: new MaxlError('BUFFER_CONFLICT', e.message) });
-    else if (e.type === 'refused') {
-      const what = e.reason === 'LATE_SEGMENT' ? 'arrived too late to run (the link or the author was too slow)' : `was refused: ${e.reason}`;
-      this.emit({ type: 'error', error: new MaxlError('DEVICE_REFUSED', `${e.device}: ${e.message.type} ${what} (detail ${e.detail})`) });
-    } else if (e.type === 'idle') this.emit({ type: 'idle' });
+    else if (e.type === 'refused') this.onRefused(e);
+    else if (e.type === 'idle') this.emit({ type: 'idle' });
   }
+
+  /**
+   * A device refused part of the trajectory. Refused events cost a light or a
+   * laser level, and are reported. Refused geometry or timing means the devices no
+   * longer hold the same trajectory: streaming stops for all of them, so that they
+   * all run out of timing together and come to rest on the path, and the job ends
+   * with one error saying why (later refusals of the same stop are not repeated).
+   */
+  private onRefused(e: Extract<StreamerEvent, { type: 'refused' }>): void {
+    const what = e.reason === 'LATE_SEGMENT' ? 'arrived too late to run (the link or the author fell behind)' : `was refused (${e.reason}, detail ${e.detail})`;
+    if (e.message.type === 'EVENTS') {
+      this.emit({ type: 'error', error: new MaxlError('DEVICE_REFUSED', `${e.device}: event changes ${what}; the motion goes on`) });
+      return;
+    }
+    if (this.streamStopped) return;
+    this.streamStopped = true;
+    this.streamer?.stop();
+    this.emit({
+      type: 'error',
+      error: new MaxlError(
+        'DEVICE_REFUSED',
+        `${e.device}: ${e.message.type} ${what}. Streaming stopped: every device comes to rest on the path. Start the job again from there.`,
+      ),
+    });
+  }
+  private streamStopped = false;
 
   private onStatus(session: DeviceSession, s: MessageOf<'STATUS'>, _at: number): void {
     const state = nameOf(DeviceState, s.state);
