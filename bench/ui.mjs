@@ -103,6 +103,13 @@ console.error(`[ui] streamed ${job.doneSegments - done0} segments in ${stream.el
 await page.evaluate(() => window.maxlWorkbench.send({ type: 'job-cancel' }));
 await page.waitForFunction(() => ['cancelled', 'done', 'failed'].includes(window.maxlWorkbench.job?.phase), null, { timeout: 60_000 });
 
+// A stream that went wrong leaves its author stopped: start a fresh one (Re-arm) for what follows.
+const rearm = async () => {
+  await page.evaluate(() => window.maxlWorkbench.send({ type: 'rearm' }));
+  await page.waitForFunction(() => window.maxlWorkbench.machine?.phase === 'ready', null, { timeout: 60_000 });
+};
+await rearm();
+
 // 2. A 1 000 000-segment job, shown in the view.
 await resetInstruments();
 const showMillionMs = await page.evaluate(
@@ -124,6 +131,8 @@ console.error(`[ui] 1 000 000 segments shown in ${showMillionMs.toFixed(0)} ms (
 await page.evaluate(() => window.maxlWorkbench.send({ type: 'job-cancel' }));
 await page.waitForFunction(() => ['cancelled', 'failed', 'done', 'halted'].includes(window.maxlWorkbench.job?.phase), null, { timeout: 60_000 });
 console.error(`[ui] the 1M job ended: ${await page.evaluate(() => window.maxlWorkbench.job.phase)}`);
+
+await rearm();
 
 // 3. Hold-to-jog: hold → for 1 s, release, read the stop the worker measured.
 await page.evaluate(() => window.maxlWorkbench.send({ type: 'go-to-origin', speed: 100 }));

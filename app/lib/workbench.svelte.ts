@@ -171,9 +171,20 @@ export class WorkbenchStore {
     this.addLog({ id: this.localLogId--, at: Date.now(), level, code, message });
   }
 
+  /**
+   * Entries arriving together (a refusal from every device, a burst of them) are
+   * added in one update per animation frame, so a flood of errors cannot hold up
+   * the page.
+   */
+  private pendingLog: LogEntry[] = [];
   private addLog(entry: LogEntry): void {
-    const next = [...this.log, entry];
-    this.log = next.length > LOG_LIMIT ? next.slice(next.length - LOG_LIMIT) : next;
+    this.pendingLog.push(entry);
+    if (this.pendingLog.length > 1) return;
+    requestAnimationFrame(() => {
+      const next = this.log.concat(this.pendingLog);
+      this.pendingLog = [];
+      this.log = next.length > LOG_LIMIT ? next.slice(next.length - LOG_LIMIT) : next;
+    });
   }
 
   private onSnapshot(s: Snapshot): void {
