@@ -10,7 +10,9 @@
  *     reaching far past the horizon is split first (queue.splitFront), so only a
  *     slice of it is locked and the rest stays editable: a hold-to-jog stops within
  *     a lead time, and a slow stream of points keeps moving instead of stopping at
- *     each point.
+ *     each point. Segments under `wholeSegment_us` with more queued after them (a
+ *     job's) are locked whole: each slice costs fresh geometry and timing on the
+ *     wire (bench/wire.ts), and a pause still comes within that time.
  *  2. Geometry. Every device also holds provisional geometry (segments without
  *     timing) beyond the timed path, at least the distance needed to brake from
  *     the timed path's exit speed at `stopDecel`. If timing stops coming (a dead
@@ -59,6 +61,10 @@ export interface StreamerOptions {
   startMargin_us: number;
   /** long segments are locked in slices reaching this far past the horizon (µs) */
   slice_us: number;
+  /** segments up to this long (µs) with more queued after them are locked whole, not sliced */
+  wholeSegment_us: number;
+  /** when the timed path falls short of the horizon, it is topped up this far (µs) past it */
+  refill_us: number;
   /** pump period while anything moves or waits (µs) */
   tick_us: number;
 }
@@ -68,6 +74,8 @@ export const DEFAULT_STREAMER: StreamerOptions = {
   leadMargin_us: 2_500,
   startMargin_us: 700,
   slice_us: 4_000,
+  wholeSegment_us: 50_000,
+  refill_us: 2_000,
   tick_us: 1_000,
 };
 
@@ -223,6 +231,10 @@ export class Streamer {
 
     const newlyTimed: Segment[] = [];
     const horizon = now + this.lead_us;
+    // Once the timed path falls short of the horizon, top it up a little past it, so
+    // that a stream of short segments goes out a few per frame, not one per tick:
+    // each frame costs ~14 bytes of headers (bench/wire.ts).
+    const refill = this.queue.transmittedEnd_us < horizon ? this.options.refill_us : 0;
     // Every device must hold the same timing, or their braking would start from
     // different points. While one has not acknowledged a frame for longer than a
     // round trip should take, nobody gets more timing: if it is gone, all run out
@@ -236,15 +248,21 @@ export class Streamer {
       const next = this.queue.timeFront();
       if (!next || next === this.holdAt) break;
       const ahead = this.countAhead(now);
-      if (this.queue.transmittedEnd_us >= horizon && ahead >= 2) break;
+      if (this.queue.transmittedEnd_us >= horizon + refill && ahead >= 2) break;
       const start = this.queue.nextStart_us(now + this.startLead_us);
       // Lock long segments a slice at a time. When the two-segment minimum asks for a
       // segment that starts at or past the horizon and is longer than a lead (a held
       // jog), lock one slice of it, not all of it; shorter ones are locked whole.
+      // A segment with more queued after it is locked whole up to `wholeSegment_us`:
+      // slicing it would only cost bytes (each slice is fresh geometry and timing),
+      // and a pause still comes within that time. The last queued segment (a live
+      // stream's, which the next point may extend) is always sliced.
       const slice = this.options.slice_us;
-      const beyond = next.duration_s * 1e6 > this.lead_us + 2 * slice ? slice : 0;
+      const duration_us = next.duration_s * 1e6;
+      const last = this.queue.untransmittedCount === 1;
+      const beyond = duration_us > this.lead_us + 2 * slice ? slice : 0;
       const reach = horizon + slice - start > 0 ? horizon + slice - start : beyond;
-      if (reach > 0 && next.duration_s * 1e6 > reach + slice) {
+      if (reach > 0 && duration_us > reach + slice && (last || duration_us > this.options.wholeSegment_us)) {
         const d = evaluateTiming(next.timing!, reach * 1e-6, { s: 0, v: 0, a: 0 }).s;
         if (d > MIN_SPLIT_MM && d < next.length - MIN_SPLIT_MM) {
           this.queue.splitFront(d);
@@ -252,6 +270,7 @@ export class Streamer {
         }
       }
       if (!this.fits(next)) {
+        if (this.queue.transmittedEnd_us >= horizon && ahead >= 2) break; // only the refill lacks room
         this.conflict(next);
         break;
       }

@@ -10,6 +10,16 @@ import { createSimulatedMachine } from '../sim/machine.ts';
 import { nodeWasmLoader } from '../sim/device/nodeWasmLoader.ts';
 import { lightPainter } from '../sim/presets/index.ts';
 
+async function lightPainterSession() {
+  const scheduler = new VirtualScheduler();
+  const sim = await createSimulatedMachine(lightPainter(), scheduler, { loader: nodeWasmLoader() });
+  const maxl = createMAXL(sim.config, { links: Object.values(sim.links), scheduler });
+  const begun = maxl.begin();
+  await scheduler.advance(2_000_000);
+  await begun;
+  return { scheduler, sim, maxl };
+}
+
 describe('streamer slicing of a long move (hold-to-jog)', () => {
   it('keeps the locked path within a few ms of now while a long move runs, so a cancel brakes at once', async () => {
     const scheduler = new VirtualScheduler();
@@ -39,6 +49,54 @@ describe('streamer slicing of a long move (hold-to-jog)', () => {
     const x = maxl.estimate().position[0];
     expect(x).toBeGreaterThan(45);
     expect(x).toBeLessThan(55);
+    await maxl.end();
+    await sim.stop();
+  });
+
+  it('locks the legs of a queued job whole (no slices, no re-sent geometry) when each lasts under wholeSegment_us', async () => {
+    const { scheduler, sim, maxl } = await lightPainterSession();
+    await maxl.addSegmentToQueue({ endPosition: [10, 10] });
+    await scheduler.advance(1_000_000);
+    // A zigzag of 1.8 mm legs at 50 mm/s: each ~44 ms, several leads long.
+    const moves = Array.from({ length: 40 }, (_, k) => ({ endPosition: [11.5 + 1.5 * k, k % 2 === 0 ? 11 : 10], maxVelocity: 50 }));
+    const pieces = new Map<number, number[]>(); // move id → durations (µs) of its transmitted pieces
+    maxl.queue.subscribe((e) => {
+      if (e.type !== 'transmitted') return;
+      for (const seg of e.segments) pieces.set(seg.moveId, [...(pieces.get(seg.moveId) ?? []), seg.duration_s * 1e6]);
+    });
+    const feeding = (async () => {
+      for (const m of moves) await maxl.addSegmentToQueue(m);
+    })();
+    await scheduler.advance(5_000_000);
+    await feeding;
+    expect(maxl.estimate().speed).toBe(0);
+    const legs = [...pieces.keys()].sort((a, b) => a - b);
+    expect(legs).toHaveLength(moves.length);
+    // The first leg was the only one queued when streaming began, and the last is a
+    // stream's tail: both may be sliced. Every leg between went out whole.
+    for (const id of legs.slice(1, -1)) {
+      expect(pieces.get(id)).toHaveLength(1);
+      expect(pieces.get(id)![0]).toBeGreaterThan(3 * maxl.lead_us);
+    }
+    await maxl.end();
+    await sim.stop();
+  });
+
+  it('slices the last queued segment of a live stream, so the next point extends the motion instead of stopping at each point', async () => {
+    const { scheduler, sim, maxl } = await lightPainterSession();
+    await maxl.addSegmentToQueue({ endPosition: [10, 10] });
+    await scheduler.advance(1_000_000);
+    // Points 1.5 mm apart every 30 ms (50 mm/s), each arriving while the one before runs.
+    let slowest = Infinity;
+    for (let k = 1; k <= 30; k++) {
+      void maxl.addSegmentToQueue({ endPosition: [10 + 1.5 * k, 10], maxVelocity: 100 });
+      for (let t = 0; t < 30; t++) {
+        await scheduler.advance(1000);
+        if (k > 2) slowest = Math.min(slowest, maxl.estimate().speed);
+      }
+    }
+    // Never at rest between points (a stop-and-go stream would reach 0 every 30 ms).
+    expect(slowest).toBeGreaterThan(10);
     await maxl.end();
     await sim.stop();
   });

@@ -8,6 +8,7 @@ import { createSimulatedMachine, type SimulatedMachine, type SimulatedMachineOpt
 import { nodeWasmLoader } from '../sim/device/nodeWasmLoader.ts';
 import type { MachinePreset } from '../sim/presets/index.ts';
 import type { DeviceInfo } from '../net/session.ts';
+import type { Link } from '../net/link.ts';
 
 export interface Bench {
   scheduler: VirtualScheduler;
@@ -20,11 +21,19 @@ export interface Bench {
 
 export async function startMachine(
   preset: MachinePreset,
-  options: { seed?: number; sim?: Partial<SimulatedMachineOptions>; maxl?: Partial<MaxlOptions>; start_us?: number } = {},
+  options: {
+    seed?: number;
+    sim?: Partial<SimulatedMachineOptions>;
+    maxl?: Partial<MaxlOptions>;
+    start_us?: number;
+    /** Wraps each of the simulator's links before the author gets it (to watch the bytes). */
+    wrapLink?: (link: Link) => Link;
+  } = {},
 ): Promise<Bench> {
   const scheduler = new VirtualScheduler(options.start_us ?? 0);
   const sim = await createSimulatedMachine(preset, scheduler, { seed: options.seed ?? 1, loader: nodeWasmLoader(), ...options.sim });
-  const maxl = createMAXL(sim.config, { links: Object.values(sim.links), scheduler, ...options.maxl });
+  const wrap = options.wrapLink ?? ((l: Link) => l);
+  const maxl = createMAXL(sim.config, { links: Object.values(sim.links).map(wrap), scheduler, ...options.maxl });
   const events: Bench['events'] = [];
   maxl.on((e) => {
     if (e.type === 'samples') return;
