@@ -4,8 +4,8 @@
  * Clock synchronisation over one simulated hour, real firmware in wasm on simulated
  * USB full-speed links, in virtual time:
  *   - the light painter's three boards, each crystal drawn within ±200 ppm (seeded);
- *   - each link: 1 ms USB frames, equal 200 µs floors, and asymmetric jitter:
- *     0.1–1.5 ms author→device, 0.1–0.6 ms device→author;
+ *   - each link: asymmetric one-way delays of 0.1–1.5 ms (SYNC_LINK=spec, the
+ *     default) or much more (SYNC_LINK=harsh), see LINKS below;
  *   - every second, the error of each device's clock model predicting its clock
  *     10 ms ahead (as when timing a segment) against the simulator's true clock.
  * p99ErrorUs and maxErrorUs cover the whole hour after begin() (which syncs for 1 s).
@@ -22,6 +22,26 @@ import { seededRandom } from '../core/sim/random.ts';
 import { u32Diff } from '../core/net/clockMap.ts';
 
 const HOUR_US = Number(process.env.SYNC_SECONDS ?? 3600) * 1e6;
+/**
+ * The links. Each one-way delay is a fixed base, plus the wait for the next 1 ms
+ * USB frame (0–1 ms, the simulated link's own), plus a uniform jitter.
+ *  - spec (default): the issue's conditions, one-way delays of 0.1–1.5 ms in all,
+ *    asymmetric: author→device 0.1 + 0–1 + 0–0.4 ms, device→author 0.1 + 0–1 + 0–0.1 ms.
+ *  - harsh: the jitter of 0.1–1.5 ms (author→device) and 0.1–0.6 ms (device→author)
+ *    on top of the USB frames and a 0.2 ms base: one-way delays of 0.3–2.7 ms and 0.3–1.8 ms.
+ */
+const LINKS = {
+  spec: {
+    toDevice: { baseDelay_us: 100, jitterMin_us: 0, jitterMax_us: 400 },
+    toAuthor: { baseDelay_us: 100, jitterMin_us: 0, jitterMax_us: 100 },
+  },
+  harsh: {
+    toDevice: { baseDelay_us: 200, jitterMin_us: 100, jitterMax_us: 1500 },
+    toAuthor: { baseDelay_us: 200, jitterMin_us: 100, jitterMax_us: 600 },
+  },
+};
+const PROFILE = (process.env.SYNC_LINK ?? 'spec') as keyof typeof LINKS;
+if (!(PROFILE in LINKS)) throw new Error(`SYNC_LINK must be one of ${Object.keys(LINKS).join(', ')}`);
 const SEED = Number(process.env.SEED ?? 7);
 
 const random = seededRandom(SEED);
@@ -31,10 +51,7 @@ const clocks: Record<string, { offset_us: number; ppm: number }> = {};
 const links: Record<string, object> = {};
 for (const d of preset.devices) {
   clocks[d.name] = { offset_us: Math.floor(random() * 4e9), ppm: (random() * 2 - 1) * 200 };
-  links[d.name] = {
-    toDevice: { baseDelay_us: 200, jitterMin_us: 100, jitterMax_us: 1500 },
-    toAuthor: { baseDelay_us: 200, jitterMin_us: 100, jitterMax_us: 600 },
-  };
+  links[d.name] = LINKS[PROFILE];
 }
 const started = performance.now();
 const sim = await createSimulatedMachine(preset, scheduler, { seed: SEED, loader: nodeWasmLoader(), clocks, links });
@@ -102,7 +119,10 @@ const result = {
   simulatedSeconds: HOUR_US / 1e6,
   samples: errors.length,
   devices: preset.devices.map((d) => ({ name: d.name, ppm: +clocks[d.name].ppm.toFixed(1) })),
-  jitter_us: { toDevice: [100, 1500], toAuthor: [100, 600] },
+  link: PROFILE,
+  oneWayDelay_us: Object.fromEntries(
+    Object.entries(LINKS[PROFILE]).map(([dir, l]) => [dir, [l.baseDelay_us + l.jitterMin_us, l.baseDelay_us + 1000 + l.jitterMax_us]]),
+  ),
   wallSeconds: +wall.toFixed(1),
 };
 await maxl.end();
