@@ -112,7 +112,14 @@ export class DeviceSession {
   private waiting: Outgoing[] = [];
   private receiver: FrameReceiver;
   private lastHeard = 0;
-  private timers: Timer[] = [];
+  /** The session's timers, by job: one of each at most. */
+  private readonly timers: Record<'hello' | 'helloTimeout' | 'ping' | 'silence' | 'resend', Timer | null> = {
+    hello: null,
+    helloTimeout: null,
+    ping: null,
+    silence: null,
+    resend: null,
+  };
   private pendingHello: { resolve(info: DeviceInfo): void; reject(err: Error): void; hello?: MessageOf<'HELLO'>; readers: ReaderInfo[] } | null = null;
   private pings = new Map<number, number>();
   private lastHelloRequestAt = -Infinity;
@@ -158,16 +165,15 @@ export class DeviceSession {
         if (!this.pendingHello) return;
         this.lastHelloRequestAt = this.scheduler.now();
         this.write(hello);
-        this.timers.push(this.scheduler.after(100_000, say));
+        this.timers.hello = this.scheduler.after(100_000, say);
       };
       say();
-      const timer = this.scheduler.after(this.options.helloTimeout_us, () => {
+      this.timers.helloTimeout = this.scheduler.after(this.options.helloTimeout_us, () => {
         if (this.pendingHello) {
           this.pendingHello = null;
           reject(new MaxlError('DEVICE_UNAVAILABLE', `no answer to hello within ${this.options.helloTimeout_us / 1000} ms on ${this.link.label ?? 'a link'}: is it a MAXL device, at the right baud rate?`));
         }
       });
-      this.timers.push(timer);
     });
     this.info = info;
     this.state = 'open';
@@ -245,6 +251,7 @@ export class DeviceSession {
       const out = this.waiting.shift() as Outgoing;
       this.transmit(out);
       this.inFlight.push(out);
+      if (this.inFlight.length === 1) this.armResend();
     }
   }
 
@@ -265,6 +272,7 @@ export class DeviceSession {
       this.resends++;
       this.transmit(this.inFlight[k]);
     }
+    this.armResend();
   }
 
   /** Completes every frame in flight up to and including `seq` (acks are cumulative: the device works in order). */
@@ -273,6 +281,7 @@ export class DeviceSession {
     if (at < 0) return;
     const done = this.inFlight.splice(0, at + 1);
     done.forEach((o, k) => o.resolve(k === done.length - 1 ? result : { ok: true }));
+    this.armResend();
     this.fillWindow();
   }
 
@@ -448,11 +457,12 @@ export class DeviceSession {
       const age = this.scheduler.now() - this.openedAt;
       const young = age < 600_000_000 || this.scheduler.now() < this.burstUntil ? this.options.burstPingEvery_us : Infinity;
       const every = Math.min(young, this.options.pingEvery_us);
-      this.timers.push(this.scheduler.after(every * (0.75 + 0.5 * random()), tick));
+      this.timers.ping = this.scheduler.after(every * (0.75 + 0.5 * random()), tick);
     };
     tick();
   }
 
+  /** Checks now and then that the device still talks (any frame will do: acks, pongs, status). */
   private scheduleHealth(): void {
     const check = () => {
       if (this.state !== 'open') return;
@@ -461,16 +471,36 @@ export class DeviceSession {
         this.lose(`no frame from the device for ${((now - this.lastHeard) / 1000).toFixed(0)} ms`);
         return;
       }
-      const oldest = this.inFlight[0];
-      if (oldest && now - oldest.sentAt > this.resendAfter_us) this.resendFrom(oldest.seq);
-      this.timers.push(this.scheduler.after(Math.min(5_000, this.options.resendAfter_us / 2), check));
+      this.timers.silence = this.scheduler.after(this.options.silence_us / 4, check);
     };
-    this.timers.push(this.scheduler.after(5_000, check));
+    this.timers.silence = this.scheduler.after(this.options.silence_us / 4, check);
+  }
+
+  /**
+   * Keeps one timer on the oldest frame in flight: when it has waited resendAfter_us
+   * for its ack, everything from it on is sent again. Armed when a frame goes out
+   * with none in flight before it, moved on as acks come, dropped when none is left.
+   */
+  private armResend(): void {
+    this.timers.resend?.cancel();
+    this.timers.resend = null;
+    const oldest = this.inFlight[0];
+    if (!oldest || this.state !== 'open') return;
+    this.timers.resend = this.scheduler.at(oldest.sentAt + this.resendAfter_us, () => {
+      this.timers.resend = null;
+      const first = this.inFlight[0];
+      // Compare with the very sum the timer was set for: now - sentAt can round below
+      // resendAfter_us, and the timer would then fire again at once, forever.
+      if (first && this.scheduler.now() >= first.sentAt + this.resendAfter_us) this.resendFrom(first.seq);
+      else this.armResend();
+    });
   }
 
   private stopTimers(): void {
-    for (const t of this.timers) t.cancel();
-    this.timers = [];
+    for (const key of Object.keys(this.timers) as Array<keyof typeof this.timers>) {
+      this.timers[key]?.cancel();
+      this.timers[key] = null;
+    }
   }
 
   private lose(reason: string): void {
