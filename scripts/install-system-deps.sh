@@ -16,6 +16,7 @@
 #                            wasm32 builds of the firmware for the simulator
 #   libclang-rt-14-dev       libFuzzer and the sanitizers for the fuzz target
 #   valgrind                 callgrind instruction counts in the firmware bench
+#   socat                    pseudo-terminal pairs for the Node serialport link's tests
 set -euo pipefail
 
 PACKAGES=(
@@ -25,6 +26,7 @@ PACKAGES=(
   clang lld wasi-libc libc++-14-dev-wasm32 libc++abi-14-dev-wasm32 libclang-rt-14-dev-wasm32
   libclang-rt-14-dev
   valgrind
+  socat
 )
 
 missing=()

@@ -9,6 +9,7 @@ export const suites = [
     name: 'unit',
     describe: 'vitest: core planner, queue, tracks, transforms (property tests included)',
     command: ['npx', 'vitest', 'run'],
+    tools: ['socat'],
   },
   {
     name: 'firmware-host',
