@@ -30,5 +30,6 @@ export type { StreamerOptions } from './net/streamer.ts';
 export type { Scheduler, Timer } from './time/scheduler.ts';
 export { VirtualScheduler } from './time/virtualScheduler.ts';
 export { RealScheduler } from './time/realScheduler.ts';
+export { PacedScheduler } from './time/pacedScheduler.ts';
 export { SensorCapture } from './capture/sensorCapture.ts';
 export { captureToCsv } from './capture/csv.ts';

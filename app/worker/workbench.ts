@@ -8,7 +8,7 @@
  * change, and on Re-arm after STOP, the workbench ends the author and starts a new
  * one where the machine stands. Ports stay open across that (SharedPort).
  */
-import { createMAXL, RealScheduler, type DeviceInfo, type Maxl, type RuntimeEvent } from '../../core/index.ts';
+import { createMAXL, PacedScheduler, RealScheduler, type DeviceInfo, type Maxl, type RuntimeEvent, type Scheduler } from '../../core/index.ts';
 import type { SimulatedMachine } from '../../core/sim/machine.ts';
 import { checkConfig } from './configCheck.ts';
 import { errorWords } from './errorWords.ts';
@@ -40,21 +40,24 @@ interface DeviceConnection {
 }
 
 /**
- * Streaming margins for real time in a browser worker. The core's defaults (1 ms
- * of margin) suit virtual time; here timers fire late by several ms whenever the
- * worker is busy (and the simulated devices share that worker), and a segment that
- * arrives too late to run stops the stream. So: 30 ms on the lead, 50 ms before a
- * start from rest, and 2 s of clock sync before streaming. The cost: a hold-to-jog
- * release brakes about 2·RTT + 30 ms later, and a move from rest starts ~50 ms later.
+ * Streaming margins for real boards, in real time in a browser worker. The core's
+ * defaults (1 ms of margin) suit exact timers; here timers fire late by several ms
+ * whenever the worker is busy, and a segment that arrives too late to run stops the
+ * stream. So: 30 ms on the lead, 50 ms before a start from rest. The cost: a
+ * hold-to-jog release brakes about 2·RTT + 30 ms later, and a move from rest starts
+ * ~50 ms later. A simulated machine runs on paced virtual time (PacedScheduler),
+ * where every timer fires at its exact time: it keeps the core's defaults.
  */
 const REAL_TIME_STREAMER = { minLead_us: 30_000, leadMargin_us: 30_000, startMargin_us: 50_000 };
+/** Clock sync before streaming starts. */
 const SYNC_BEFORE_START_US = 2_000_000;
 
 /** Device reports go to the page at most this often, ms. */
 const DEVICE_REPORT_MS = 250;
 
 export class Workbench {
-  private readonly scheduler = new RealScheduler();
+  /** Paced virtual time while the machine is simulated, the wall clock for real boards. */
+  private scheduler: Scheduler = new RealScheduler();
   private devices: DeviceConnection[] = [];
   private sim: SimulatedMachine | null = null;
   private presetId: string | null = null;
@@ -165,6 +168,7 @@ export class Workbench {
       return;
     }
     await this.closeDevices();
+    this.useScheduler(new PacedScheduler());
     this.presetId = id;
     this.config = config ?? base;
     this.origin = new Array<number>(this.config.motionAxes.length).fill(0);
@@ -198,6 +202,7 @@ export class Workbench {
       this.presetId = null;
       this.log('info', 'CONNECT', 'Left the simulated machine for real boards; the configuration is kept: check its subscriptions.');
     }
+    if (this.scheduler instanceof PacedScheduler) this.useScheduler(new RealScheduler());
     this.devices.push({ id: `port-${this.nextDeviceId++}`, port: new SharedPort({ readable, writable, label }), simulated: false, info: null });
     this.log('info', 'CONNECT', `Connected ${label}.`);
     this.devicesChanged = true;
@@ -227,6 +232,12 @@ export class Workbench {
     this.devicesChanged = true;
   }
 
+  /** Swaps the time base; only between machines, when nothing runs on the old one. */
+  private useScheduler(next: Scheduler): void {
+    if (this.scheduler instanceof PacedScheduler) this.scheduler.stop();
+    this.scheduler = next;
+  }
+
   private knownDevices(): DeviceInfo[] {
     return this.devices.flatMap((d) => (d.info ? [d.info] : []));
   }
@@ -252,7 +263,7 @@ export class Workbench {
     if (this.origin.length !== axes) this.origin = new Array<number>(axes).fill(0);
     let maxl: Maxl;
     try {
-      maxl = createMAXL(this.config, { links: this.devices.map((d) => d.port.session()), initialPosition: this.position, scheduler: this.scheduler, streamer: REAL_TIME_STREAMER, syncBeforeStart_us: SYNC_BEFORE_START_US });
+      maxl = createMAXL(this.config, { links: this.devices.map((d) => d.port.session()), initialPosition: this.position, scheduler: this.scheduler, streamer: this.scheduler instanceof PacedScheduler ? undefined : REAL_TIME_STREAMER, syncBeforeStart_us: SYNC_BEFORE_START_US });
     } catch (err) {
       const words = errorWords(err);
       this.setPhase('not-ready', words.message);

@@ -3,7 +3,9 @@
  * implementations share this interface:
  *   - VirtualScheduler: deterministic virtual time for Node tests and benchmarks
  *     (an hour of machine time runs in seconds);
- *   - RealScheduler: the wall clock, for the browser and real boards.
+ *   - RealScheduler: the wall clock, for real boards;
+ *   - PacedScheduler: virtual time kept up with the wall clock, for a simulated
+ *     machine in a browser worker (exact timers, real-time pace).
  * Runtime code (sessions, clock sync, streaming) only ever uses this interface.
  */
 export interface Timer {
