@@ -11,6 +11,7 @@ export function mmPerS(v: number): string {
 /** µs as µs or ms, whichever reads better. */
 export function micros(us: number): string {
   if (!Number.isFinite(us)) return '—';
+  if (Math.abs(us) < 0.05) return '< 0.1 µs';
   if (Math.abs(us) < 1000) return `${us.toFixed(us < 10 ? 1 : 0)} µs`;
   return `${(us / 1000).toFixed(2)} ms`;
 }

@@ -52,7 +52,8 @@ export function layoutSubscriptions(devices: DeviceView[], subscriptions: Subscr
   }
   const left: LeftRow[] = [];
   const readerY = new Map<string, number>();
-  let y = 0;
+  // Both columns start under their headings.
+  let y = HEAD_H;
   for (const [device, g] of groups) {
     left.push({ type: 'device', device, y, ghost: g.ghost, firmware: g.firmware });
     y += HEAD_H;
