@@ -8,6 +8,8 @@
 //   op % 5 == 1  a frame:     seq mode, type, length, payload -> COBS + CRC
 //   op % 5 == 2  time:        advance the clock by a fuzzed 8-, 16- or 32-bit step
 //   op % 5 == 3  loops:       call loop() 1..16 times, 1..255 µs apart
+// Stepper "a" steps from the (virtual) step timer, whose interrupts run while
+// the clock advances; "b" steps from loop().
 //   op % 5 == 4  payloads:    run a fuzzed payload through every codec parser
 // After every operation, the device's invariants are checked and everything
 // it sent must decode as valid frames; a violation aborts (a crash to libFuzzer).
@@ -90,6 +92,18 @@ void checkInvariants(const MAXL_Device& device) {
   check(q.timed() <= q.count(), "more timed segments than segments");
   check(m.activeSlots() <= MAXL_POSITION_SLOTS, "active slots");
   check(device.state() <= state::HALTED, "state out of range");
+  check(stepperA.usesStepTimer(), "stepper a lost its step timer");
+  int16_t pending = stepperA.generator().channel().pending();
+  check(pending >= -MAXL_STEP_RING * 127 && pending <= MAXL_STEP_RING * 127, "step ring over capacity");
+}
+
+// Moves the clock on by dt, running the step timer's interrupts on the way
+// (a jump of 2^31 µs or more is the clock going back: no interrupts).
+void advance(uint32_t dt) {
+  if (dt < 0x80000000u)
+    host::runStepTimer(host::micros() + dt);
+  else
+    host::setMicros(host::micros() + dt);
 }
 
 const uint8_t TYPES[] = {type::HELLO_REQUEST, type::PING, type::CLOCK, type::SUBSCRIBE, type::GEOMETRY,
@@ -102,6 +116,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   host::setMicros(0xFFF00000u);  // every run crosses the u32 wrap within seconds
   MAXL_Device* device = new (deviceStorage) MAXL_Device("fuzz");
   device->begin();
+  // a clean ring and timer for every input (the readers are static)
+  stepperA.useStepTimer(false);
+  check(stepperA.useStepTimer(true), "stepper a has no step timer");
   Input in = {data, size, 0};
   uint8_t seq = 0;
   while (in.more()) {
@@ -132,7 +149,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       }
       case 2: {
         uint8_t width = in.byte() % 3;
-        host::advanceMicros(in.word(width == 0 ? 1 : width == 1 ? 2 : 4));
+        advance(in.word(width == 0 ? 1 : width == 1 ? 2 : 4));
         device->loop();
         break;
       }
@@ -140,7 +157,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         uint8_t n = (uint8_t)(1 + in.byte() % 16);
         uint8_t dt = in.byte();
         for (uint8_t i = 0; i < n; i++) {
-          host::advanceMicros(1 + dt);
+          advance(1u + dt);
           device->loop();
         }
         break;

@@ -27,4 +27,14 @@
 #include "maxl/readers/stepper.h"
 #include "maxl/readers/tracks.h"
 
+#if MAXL_STEP_TIMER && MAXL_HAL_ARDUINO
+// Timer 1 as MAXL runs it for MAXL_Stepper's step interrupt: normal mode,
+// free running at 2 counts per µs (clk/8), wrapping every 32.768 ms. The
+// library uses OCR1B and TIMER1_COMPB only; OCR1A, OC1A (D9), its interrupt
+// and ICR1 are free for the sketch on the same count, as long as it does not
+// change the mode or the clock (examples/BlotPlotter/servo_pulse.h). Call it
+// before using those; it does nothing the second time.
+inline void MAXL_useTimer1() { maxl_fw::hal::stepTimerBegin(0); }
+#endif
+
 #endif

@@ -8,33 +8,35 @@
 #include <MAXL.h>
 
 #include "bno055.h"
+#include "sample_pacer.h"
 
 const uint32_t SAMPLE_PERIOD_US = 10000;  // 100 Hz
+const uint32_t RETRY_PERIOD_US = 1000000;
 
 MAXL_Device maxl("accelerometer");
 MAXL_SensorWriter accel("accel", 3);  // x, y, z in mm/s²
 Bno055 imu;
 bool imuReady = false;
-uint32_t lastSample = 0;
+SamplePacer pacer;  // the samples' and the IMU retries' clock (sample_pacer.h)
 
 void setup() {
   imuReady = imu.begin();
   maxl.begin(Serial);
+  pacer.idle(micros());
 }
 
 void loop() {
   maxl.loop();
-  if (!accel.subscribed()) return;
   uint32_t now = micros();
-  if (!imuReady) {  // plugged in late, or the first try failed: retry once a second
-    if ((int32_t)(now - lastSample) < 1000000L) return;
-    lastSample = now;
-    imuReady = imu.begin();
+  if (!accel.subscribed()) {
+    pacer.idle(now);
     return;
   }
-  if ((int32_t)(now - lastSample) < (int32_t)SAMPLE_PERIOD_US) return;
-  lastSample += SAMPLE_PERIOD_US;
-  if ((int32_t)(now - lastSample) > (int32_t)SAMPLE_PERIOD_US) lastSample = now;  // fell behind: skip ahead
+  if (!imuReady) {  // plugged in late, or the first try failed: retry once a second
+    if (pacer.due(now, RETRY_PERIOD_US)) imuReady = imu.begin();
+    return;
+  }
+  if (!pacer.due(now, SAMPLE_PERIOD_US)) return;
   float xyz[3];
   if (imu.readAcceleration(xyz)) accel.writeAt(now, xyz);  // stamped when the read began
 }

@@ -10,6 +10,8 @@
 
 #include <stdint.h>
 
+#include "maxl/hal/platform.h"
+
 #if defined(__AVR__)
 #include <avr/io.h>
 #if RAMEND <= 0x8FF
@@ -93,6 +95,89 @@
 #define MAXL_MAX_STEPS_PER_EVALUATION 64
 #endif
 
+// ---- Step timing from a timer interrupt (readers/step_timer.h)
+// 1 where the library has a step timer: 16 MHz AVRs with Timer 1 (Uno, Nano,
+// Mega), and the host (a virtual timer the tests drive). 0 elsewhere (wasm):
+// steppers step from loop().
+#ifndef MAXL_STEP_TIMER
+#if MAXL_HAL_WASM
+#define MAXL_STEP_TIMER 0
+#elif MAXL_HAL_ARDUINO
+#if defined(__AVR__) && defined(OCR1B) && defined(TIMSK1) && defined(F_CPU) && F_CPU == 16000000L
+#define MAXL_STEP_TIMER 1
+#else
+#define MAXL_STEP_TIMER 0
+#endif
+#else
+#define MAXL_STEP_TIMER 1
+#endif
+#endif
+
+// Whether a MAXL_Stepper uses the step timer unless told otherwise
+// (MAXL_Stepper::useStepTimer): on boards, yes; in the host tests, only when asked.
+#ifndef MAXL_STEP_TIMER_DEFAULT
+#if MAXL_HAL_ARDUINO
+#define MAXL_STEP_TIMER_DEFAULT 1
+#else
+#define MAXL_STEP_TIMER_DEFAULT 0
+#endif
+#endif
+
+// Steppers the timer serves; more step from loop().
+#ifndef MAXL_STEP_CHANNELS
+#define MAXL_STEP_CHANNELS 3
+#endif
+
+// Runs (planned windows of steps) each stepper keeps ahead of its timer.
+#ifndef MAXL_STEP_RING
+#if MAXL_SMALL_RAM
+#define MAXL_STEP_RING 4
+#else
+#define MAXL_STEP_RING 8
+#endif
+#endif
+
+// How far ahead of the device clock loop() plans steps (µs). It must cover
+// the longest loop() (a TIMING frame's float maths, ~1.5 ms on an Uno) and
+// stays well under the author's lead time (2 ms + 2 round trips or more).
+#ifndef MAXL_STEP_LEAD_US
+#define MAXL_STEP_LEAD_US 3000UL
+#endif
+
+// Window lengths (µs, powers of two): the longest, where the path is straight
+// in time (cruise), and the shortest, for the sharpest accelerations.
+#ifndef MAXL_STEP_WINDOW_MAX_US
+#define MAXL_STEP_WINDOW_MAX_US 2048U
+#endif
+#ifndef MAXL_STEP_WINDOW_MIN_US
+#define MAXL_STEP_WINDOW_MIN_US 128U
+#endif
+
+// Most steps one window may hold: where a window would hold more (over
+// ~47 kHz in a 2 ms window), it is halved (down to MAXL_STEP_WINDOW_MIN_US).
+// The rest of a run's 127 is room for a catch-up burst.
+#ifndef MAXL_STEP_WINDOW_STEPS
+#define MAXL_STEP_WINDOW_STEPS 96
+#endif
+
+// Every planned step lags its exact position by at least this (units of
+// 2^-16 mm), to cover the fixed-point evaluation's error against the exact
+// path (firmware/README.md: 8 units plus a few over a segment), so no step
+// ever comes early.
+#ifndef MAXL_STEP_LAG_UNITS
+#define MAXL_STEP_LAG_UNITS 16
+#endif
+
+// Timer ticks (0.5 µs): a step pulse's high time is at least
+// (MAXL_STEP_PULSE_TICKS - 1) ticks, and a compare is never set closer than
+// MAXL_STEP_MIN_TICKS to the count (so it cannot be missed).
+#ifndef MAXL_STEP_PULSE_TICKS
+#define MAXL_STEP_PULSE_TICKS 5
+#endif
+#ifndef MAXL_STEP_MIN_TICKS
+#define MAXL_STEP_MIN_TICKS 4
+#endif
+
 // Serial rate used by MAXL_Device::begin(port) when none is given. 250 000
 // baud is exact at 16 MHz; native-USB boards ignore it.
 #ifndef MAXL_DEFAULT_BAUD
@@ -110,6 +195,17 @@
 #endif
 #if MAXL_EVENT_SLOTS < 1 || MAXL_EVENT_SLOTS > 32
 #error "MAXL_EVENT_SLOTS must be 1..32"
+#endif
+
+#if MAXL_STEP_WINDOW_STEPS < 1 || MAXL_STEP_WINDOW_STEPS > 120
+#error "MAXL_STEP_WINDOW_STEPS must be 1..120 (a run holds 127 steps)"
+#endif
+#if MAXL_STEP_RING < 2 || MAXL_STEP_RING > 32
+#error "MAXL_STEP_RING must be 2..32"
+#endif
+#if (MAXL_STEP_WINDOW_MAX_US & (MAXL_STEP_WINDOW_MAX_US - 1)) || (MAXL_STEP_WINDOW_MIN_US & (MAXL_STEP_WINDOW_MIN_US - 1)) || \
+    MAXL_STEP_WINDOW_MIN_US > MAXL_STEP_WINDOW_MAX_US || MAXL_STEP_WINDOW_MAX_US > 2048
+#error "MAXL_STEP_WINDOW_MIN_US and _MAX_US must be powers of two, min <= max <= 2048 (step_generator.cpp)"
 #endif
 
 #define MAXL_FW_MAJOR 0

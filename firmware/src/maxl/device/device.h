@@ -149,11 +149,12 @@ class MAXL_Device {
   uint8_t txSeq_;
   uint8_t flags_;
   uint8_t lastState_;
-  bool begun_;
-  bool velocityValid_;
-  bool accelerationValid_;
-  bool statusPending_;  // a STATUS is due but a frame was arriving
-  bool pongPending_;    // a PONG waits for its reply time (PING replyAfter)
+  // flags as bits: every byte counts on a 2 KB board
+  bool begun_ : 1;
+  bool velocityValid_ : 1;
+  bool accelerationValid_ : 1;
+  bool statusPending_ : 1;  // a STATUS is due but a frame was arriving
+  bool pongPending_ : 1;    // a PONG waits for its reply time (PING replyAfter)
   uint16_t pongId_;
   uint32_t pongReceivedAt_;
   uint32_t pongDueAt_;

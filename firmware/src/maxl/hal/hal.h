@@ -13,6 +13,7 @@
 
 #include <stdint.h>
 
+#include "maxl/config.h"
 #include "maxl/hal/platform.h"
 
 #if MAXL_HAL_ARDUINO
@@ -92,6 +93,60 @@ void writePin(const OutputPin& pin, bool high);
 void stepPulseWait();
 // Direction setup time before a step after the direction pin changed.
 void directionSetupWait();
+
+#if MAXL_STEP_TIMER
+// ---- The step timer (readers/step_timer.h): a free-running 16-bit count at
+// 2 per µs of the device clock, with one compare interrupt.
+//   AVR:  Timer 1 in normal mode at clk/8, OCR1B and TIMER1_COMPB (OCR1A,
+//         OC1A and ICR1 stay free for the sketch, on the same count: see
+//         MAXL_useTimer1() in MAXL.h).
+//   host: a virtual count the tests run with host::runStepTimer().
+// Starts the count (idempotent); `isr` is what the compare runs (host only:
+// on AVR the vector is in step_timer.cpp).
+void stepTimerBegin(void (*isr)());
+// The count at device time t (µs): 2·t plus an offset measured at start.
+uint16_t stepTicks(uint32_t t);
+#if MAXL_HAL_ARDUINO && defined(__AVR__)
+inline __attribute__((always_inline)) uint16_t stepTimerNow() { return TCNT1; }  // interrupts off
+// Sets the compare to `at`, or MAXL_STEP_MIN_TICKS from now if `at` is
+// closer or past (a match on a passed count would come 32 ms late).
+inline __attribute__((always_inline)) void stepTimerArm(uint16_t at) {
+  uint16_t now = TCNT1;
+  if ((int16_t)(at - now) < (int16_t)MAXL_STEP_MIN_TICKS) at = (uint16_t)(now + MAXL_STEP_MIN_TICKS);
+  OCR1B = at;
+  TIFR1 = _BV(OCF1B);
+  TIMSK1 |= _BV(OCIE1B);
+}
+inline __attribute__((always_inline)) void stepTimerDisarm() { TIMSK1 &= (uint8_t)~_BV(OCIE1B); }
+inline __attribute__((always_inline)) uint8_t lockInterrupts() {
+  uint8_t sreg = SREG;
+  cli();
+  return sreg;
+}
+inline __attribute__((always_inline)) void unlockInterrupts(uint8_t sreg) { SREG = sreg; }
+// From the interrupt (interrupts are off): no save and restore.
+inline __attribute__((always_inline)) void writePinFromIsr(const OutputPin& pin, bool high) {
+  if (high)
+    *pin.port |= pin.mask;
+  else
+    *pin.port &= (uint8_t)~pin.mask;
+}
+// Holds a step pulse: returns once the count is MAXL_STEP_PULSE_TICKS past
+// `since` (read just after the pin rose): at least 2 µs high.
+inline __attribute__((always_inline)) void stepPulseHold(uint16_t since) {
+  while ((uint16_t)(TCNT1 - since) < (uint16_t)MAXL_STEP_PULSE_TICKS) {
+  }
+}
+#else
+uint16_t stepTimerNow();
+void stepTimerArm(uint16_t at);
+void stepTimerDisarm();
+inline uint8_t lockInterrupts() { return 0; }
+inline void unlockInterrupts(uint8_t) {}
+inline void writePinFromIsr(const OutputPin& pin, bool high) { writePin(pin, high); }
+inline void stepPulseHold(uint16_t) {}
+#endif
+#endif  // MAXL_STEP_TIMER
 
 }  // namespace hal
 }  // namespace maxl_fw

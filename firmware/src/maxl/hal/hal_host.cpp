@@ -11,6 +11,10 @@ namespace host {
 
 namespace {
 uint32_t clockUs = 0;
+uint64_t tickClock = 0;  // 2 per µs
+bool timerArmed = false;
+uint16_t timerCompare = 0;
+void (*timerIsr)() = 0;
 uint8_t rxBuf[RX_CAPACITY];
 size_t rxHead = 0, rxCount = 0;
 uint8_t txBuf[TX_CAPACITY];
@@ -23,13 +27,43 @@ bool pinOver = false;
 
 void reset() {
   clockUs = 0;
+  tickClock = 0;
+  timerArmed = false;
   rxHead = rxCount = 0;
   clearTx();
   clearPinLog();
 }
-void setMicros(uint32_t t) { clockUs = t; }
+// The count follows the clock; a jump back that would take it below 0 goes
+// forward by the same amount modulo 2^33 counts (2^32 µs) instead.
+void setMicros(uint32_t t) {
+  int64_t d = 2 * (int64_t)(int32_t)(t - clockUs);
+  if (d < 0 && (uint64_t)(-d) > tickClock) d = 2 * (int64_t)(uint32_t)(t - clockUs);
+  tickClock += (uint64_t)d;
+  clockUs = t;
+}
 uint32_t micros() { return clockUs; }
-void advanceMicros(uint32_t dt) { clockUs += dt; }
+void advanceMicros(uint32_t dt) { setMicros(clockUs + dt); }
+
+void runStepTimer(uint32_t untilUs) {
+  int32_t span = (int32_t)(untilUs - clockUs);
+  uint64_t end = tickClock + (span > 0 ? 2 * (uint64_t)span : 0);
+  bool fired = false;  // a compare left at the count it fired at matches again 2^16 counts later, as on a chip
+  while (timerArmed && timerIsr) {
+    uint32_t ahead = (uint16_t)(timerCompare - (uint16_t)tickClock);
+    if (ahead == 0 && fired) ahead = 65536;
+    if (tickClock + ahead > end) break;
+    tickClock += ahead;
+    clockUs = (uint32_t)(tickClock >> 1);
+    timerIsr();
+    fired = true;
+  }
+  tickClock = end;
+  clockUs = (uint32_t)(end >> 1);
+  if (span > 0) clockUs = untilUs;
+}
+bool stepTimerArmed() { return timerArmed; }
+uint16_t stepTimerCompare() { return timerCompare; }
+uint64_t ticks() { return tickClock; }
 
 size_t pushRx(const uint8_t* data, size_t length) {
   size_t n = 0;
@@ -96,10 +130,25 @@ void writePin(const OutputPin& pin, bool high) {
   w.time = host::clockUs;
   w.pin = pin.number;
   w.value = high ? 1 : 0;
+  w.tick = host::tickClock;
 }
 
 void stepPulseWait() {}
 void directionSetupWait() {}
+
+#if MAXL_STEP_TIMER
+void stepTimerBegin(void (*isr)()) { host::timerIsr = isr; }
+// The host's count is exactly 2 per µs, from 0 at µs 0.
+uint16_t stepTicks(uint32_t t) { return (uint16_t)(t << 1); }
+uint16_t stepTimerNow() { return (uint16_t)host::tickClock; }
+void stepTimerArm(uint16_t at) {
+  uint16_t now = (uint16_t)host::tickClock;
+  if ((int16_t)(at - now) < (int16_t)MAXL_STEP_MIN_TICKS) at = (uint16_t)(now + MAXL_STEP_MIN_TICKS);
+  host::timerCompare = at;
+  host::timerArmed = true;
+}
+void stepTimerDisarm() { host::timerArmed = false; }
+#endif
 
 }  // namespace hal
 }  // namespace maxl_fw

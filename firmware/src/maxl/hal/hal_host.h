@@ -18,6 +18,7 @@ struct PinWrite {
   uint32_t time;
   uint8_t pin;
   uint8_t value;
+  uint64_t tick;  // 2 per µs: the step timer writes pins between µs
 };
 
 void reset();                      // clock 0, buffers and log empty
@@ -37,6 +38,15 @@ const PinWrite* pinLog();
 size_t pinLogLength();
 bool pinLogOverflowed();
 void clearPinLog();
+
+// The virtual step timer (hal.h, MAXL_STEP_TIMER): a count of 2 per µs of the
+// virtual clock. runStepTimer() runs every compare due up to `untilUs` (in
+// order, with the clock at the compare's count: a step is logged at its
+// exact half µs), then sets the clock to `untilUs`.
+void runStepTimer(uint32_t untilUs);
+bool stepTimerArmed();
+uint16_t stepTimerCompare();
+uint64_t ticks();  // the count, not wrapped
 
 }  // namespace host
 }  // namespace maxl_fw

@@ -113,6 +113,10 @@ MAXL_HOT int32_t mulhi16(int32_t a, uint16_t x) {
 MAXL_HOT int32_t mulhi16(int32_t a, uint16_t x) { return mulhi16Portable(a, x); }
 #endif
 
+// The same, out of line, for code off the hot path (step planning): one
+// copy of the multiply instead of one per use (flash is short on an Uno).
+int32_t mulhi16Cold(int32_t a, uint16_t x);
+
 // One position track inside the current phase (see the top of this file).
 struct FixedTrack {
   int32_t P;

@@ -8,6 +8,8 @@
 
 namespace maxl_fw {
 
+__attribute__((noinline)) int32_t mulhi16Cold(int32_t a, uint16_t x) { return mulhi16(a, x); }
+
 namespace {
 inline int32_t signedCoefficient(int8_t sign, int32_t magnitude) {
   return sign > 0 ? magnitude : sign < 0 ? -magnitude : 0;
@@ -18,6 +20,7 @@ inline float deltaOf(int32_t p0, int32_t p1) { return (float)((int64_t)p1 - (int
 }  // namespace
 
 void Motion::reset() {
+  changed();
   queue_.clear(0);
   mode_ = IDLE;
   activeSlots_ = 0;
@@ -58,6 +61,7 @@ uint8_t Motion::statusState() const {
 }
 
 void Motion::setBase(const int32_t* p0, uint8_t slots) {
+  changed();
   for (uint8_t i = 0; i < slots; i++) {
     base_[i] = p0[i];
     if (!moving()) pos_[i] = p0[i];
@@ -161,6 +165,21 @@ void Motion::moveChunkTo(uint32_t t) {
   }
 }
 
+// The same for one track (the lookahead's): the same operations in the same
+// order, so the same numbers.
+__attribute__((noinline)) void Motion::moveTrackTo(FixedTrack& track, uint32_t& chunkStart, uint32_t t) {
+  uint32_t x = t - chunkStart;
+  while (x >= 65536UL) {
+    track.nextChunk();
+    chunkStart += 65536UL;
+    x -= 65536UL;
+  }
+  if (x) {
+    track.advance((uint16_t)x);
+    chunkStart = t;
+  }
+}
+
 void Motion::activate(uint32_t t) {
   const Segment& s = queue_.head();
   int8_t sign = s.phaseSign(0);
@@ -229,6 +248,7 @@ void Motion::finishSegment(uint32_t t) {
 // slot i, which moves Δi/L units per mm, is at from_i + (Δi/L)·s(τ):
 //   B = (Δi/L)·v  and  C = −(Δi/L)·D/2, scaled as in fixed_point.h.
 void Motion::beginBrake(uint32_t t, float speed, float sigma0, const int32_t* from) {
+  changed();
   const Segment& s = queue_.head();
   headStarted_ = true;
   queue_.markTimed(0);  // any timing it had is abandoned
@@ -305,15 +325,102 @@ void Motion::brakeFromHalt(uint32_t t) {
 }
 
 void Motion::stopHere(uint16_t segmentId, float sigma) {
+  changed();
   mode_ = STOPPED;
   lastId_ = segmentId;
   lastSigma_ = sigma;
   haltPending_ = false;
 }
 
+// ------------------------------------------------------------------ lookahead
+
+int32_t Motion::lookFrom(Lookahead& a, uint8_t slot) const {
+  a.epoch = epoch_;
+  a.segment = queue_.headId();
+  a.phase = phase_;
+  a.chunkStart = chunkStart_;
+  a.pieceEnd = phaseEnd_;
+  a.track = track_[slot];
+  a.state = mode_ == RUNNING ? Lookahead::RUN : mode_ == BRAKING ? Lookahead::BRAKE : Lookahead::REST;
+  return pos_[slot];
+}
+
+// Where a slot rests before segment `segmentId` starts: the p1 of the one
+// before it, or, for the head, its p0 while Motion runs or brakes along it and
+// Motion's own position when it is at rest (stopped inside a segment, halted).
+int32_t Motion::restPosition(uint16_t segmentId, uint8_t slot) const {
+  uint16_t i = (uint16_t)(segmentId - queue_.headId());
+  if (i == 0 || i > queue_.count()) return moving() ? base_[slot] : pos_[slot];
+  return queue_.at((uint8_t)(i - 1)).p1[slot];
+}
+
+bool Motion::lookSpan(Lookahead& a, uint8_t slot, uint32_t from, uint32_t& until) const {
+  if (a.epoch != epoch_) return false;
+  // Each pass either answers or crosses one boundary at or before `from`.
+  for (;;) {
+    if (a.state == Lookahead::BRAKE) {  // only the piece Motion is in
+      until = a.pieceEnd;
+      return timeBefore(from, until);
+    }
+    int16_t i = queue_.find(a.segment);
+    if (i < 0 || i >= queue_.timed()) return false;  // no timing for it (yet)
+    const Segment& s = queue_.at((uint8_t)i);
+    if (a.state == Lookahead::REST) {
+      until = s.start;
+      if (timeBefore(from, until)) return true;
+      // it starts: as Motion::activate(), then phase 0 below
+      a.track.P = startOf((uint8_t)i, slot);
+      a.track.B = s.b0[slot];
+      a.chunkStart = a.pieceEnd = s.start;
+      a.phase = 0xFF;
+      a.state = Lookahead::RUN;
+    } else {
+      if (haltPending_ && haltSegment_ == a.segment && timeBefore(haltAt_, a.pieceEnd)) {
+        // Motion brakes at haltAt_: what follows is Motion's to decide.
+        until = haltAt_;
+        return timeBefore(from, until);
+      }
+      until = a.pieceEnd;
+      if (timeBefore(from, until)) return true;
+      if (a.phase + 1 >= s.phaseCount) {  // the segment ends: rest at its p1 until the next starts
+        a.segment++;
+        a.state = Lookahead::REST;
+        continue;
+      }
+      moveTrackTo(a.track, a.chunkStart, a.pieceEnd);  // as Motion::crossPhase()
+    }
+    a.phase++;
+    a.track.C = signedCoefficient(s.phaseSign(a.phase), s.cmag[slot]);
+    a.pieceEnd += s.durations[a.phase];
+  }
+}
+
+int32_t Motion::lookAt(Lookahead& a, uint8_t slot, uint32_t t) const {
+  if (a.state == Lookahead::REST) return restPosition(a.segment, slot);
+  if (t == a.pieceEnd && a.state == Lookahead::RUN) {
+    // a segment ends exactly at its p1, as in Motion::finishSegment(). (Where a
+    // brake piece ends, Motion sets the position too; the lookahead learns it
+    // when it starts again from Motion, and the planner catches up.)
+    int16_t i = queue_.find(a.segment);
+    if (i >= 0 && a.phase + 1 >= queue_.at((uint8_t)i).phaseCount) return queue_.at((uint8_t)i).p1[slot];
+  }
+  if (timeBefore(t, a.chunkStart)) t = a.chunkStart;
+  uint32_t x = t - a.chunkStart;
+  while (x >= 65536UL) {
+    a.track.nextChunk();
+    a.chunkStart += 65536UL;
+    x -= 65536UL;
+  }
+  // FixedTrack::at(), with the multiply out of line (the same numbers)
+  const FixedTrack& k = a.track;
+  int32_t w = (int32_t)((uint32_t)k.B + (uint32_t)mulhi16Cold(k.C, (uint16_t)x));
+  return (int32_t)((uint32_t)k.P + (uint32_t)mulhi16Cold(w, (uint16_t)x));
+}
+
 // ------------------------------------------------------------------ commands
 
 void Motion::haltNow(uint32_t now) {
+  changed();
   uint16_t id;
   float sigma;
   where(now, id, sigma);
@@ -328,6 +435,7 @@ void Motion::haltNow(uint32_t now) {
 }
 
 bool Motion::haltBrakeAt(uint32_t now, uint32_t at) {
+  changed();
   if (timeBefore(at, now)) {
     // Too late for `at`: brake at once.
     if (mode_ == RUNNING) {

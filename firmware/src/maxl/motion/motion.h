@@ -25,11 +25,30 @@
 
 namespace maxl_fw {
 
+// A read-only walk along one slot's path ahead of Motion's clock, for step
+// planning (readers/step_planner.h). It follows only what is certain: the
+// timed segments (up to a pending HALT's time), or the brake piece Motion is
+// in. Motion's decisions (braking when the timing runs out, HALT, a new
+// session) are still taken at the device clock; each one changes Motion's
+// epoch(), and a lookahead with another epoch must start again from Motion.
+// A lookahead evaluates with the very operations Motion uses (fixed_point.h),
+// so it gives the same positions, bit for bit.
+struct Lookahead {
+  enum State : uint8_t { REST, RUN, BRAKE };
+  uint32_t chunkStart;  // RUN/BRAKE: as Motion's
+  uint32_t pieceEnd;    // RUN: end of the phase; BRAKE: end of the brake piece
+  FixedTrack track;     // RUN/BRAKE: the slot's coefficients
+  uint16_t segment;     // RUN: the segment followed; REST: the next one to start
+  uint8_t phase;        // RUN
+  uint8_t state;
+  uint8_t epoch;        // Motion::epoch() when it started from Motion
+};
+
 class Motion {
  public:
   enum Mode : uint8_t { IDLE, WAITING, RUNNING, BRAKING, STOPPED, HALTED };
 
-  Motion() { reset(); }
+  Motion() : epoch_(0) { reset(); }
 
   // New session: empty queue, positions unknown, no timing history.
   void reset();
@@ -88,6 +107,28 @@ class Motion {
   bool haltBrakeAt(uint32_t now, uint32_t at);  // HALT mode 1; false if `at` was past (late)
   void dropFrom(uint8_t index);                // REPLACE_TAIL, index checked by the caller
 
+  // ---- lookahead (see Lookahead above)
+  // Changes whenever the path ahead changes other than by new timing: braking
+  // starts or moves to the next piece, a stop, HALT, a new base, a new session.
+  uint8_t epoch() const { return epoch_; }
+  // HALT mode 1 still ahead: the path is certain only until haltAt().
+  bool haltPending() const { return haltPending_; }
+  uint32_t haltAt() const { return haltAt_; }
+  // Starts `a` where Motion is now (last tick) and returns the slot's position there.
+  int32_t lookFrom(Lookahead& a, uint8_t slot) const;
+  // How far `a` can go from `from` in one piece: sets `until` to the end of
+  // that piece (a phase, a brake piece, a rest before a timed segment's start,
+  // or a pending HALT's time) and returns true, or returns false when the
+  // path after `from` is not certain yet (the timing ran out: wait for more,
+  // or for Motion to brake; braking: wait for Motion's next piece). At a
+  // boundary (until == from) call lookAt(a, slot, from) to cross it.
+  bool lookSpan(Lookahead& a, uint8_t slot, uint32_t from, uint32_t& until) const;
+  // The slot's position at t (not before the last t asked, not past the
+  // `until` of lookSpan), moving `a` on; at a segment's end, exactly its p1.
+  int32_t lookAt(Lookahead& a, uint8_t slot, uint32_t t) const;
+  // Half acceleration of the slot on the piece `a` is in (Q0.32 units/µs², 0 at rest).
+  int32_t lookCurvature(const Lookahead& a) const { return a.state == Lookahead::REST ? 0 : a.track.C; }
+
   // Sticky: set when the timing ran out while moving (STATUS flag `starved`).
   bool takeStarved() {
     bool s = starved_;
@@ -108,18 +149,22 @@ class Motion {
   void evaluate(uint32_t now);
   uint32_t nextChunks(uint32_t x);
   void refreshFloatPhase();
+  void changed() { epoch_++; }
+  static void moveTrackTo(FixedTrack& track, uint32_t& chunkStart, uint32_t t);
+  int32_t restPosition(uint16_t segmentId, uint8_t slot) const;
 
   SegmentQueue queue_;
   Mode mode_;
   uint8_t activeSlots_;
   uint8_t knownSlots_;
   uint8_t phase_;          // current phase of the head (RUNNING)
-  bool headStarted_;       // the head has been run or braked along
-  bool starved_;
-  bool haltPending_;       // HALT mode 1 with `at` still ahead
-  bool hasRetiredEnd_;
-  bool floatValid_;        // phaseSigma_/phaseNu_ are those of the current phase
-  bool brakeStops_;
+  bool headStarted_ : 1;   // the head has been run or braked along
+  bool starved_ : 1;
+  bool haltPending_ : 1;   // HALT mode 1 with `at` still ahead
+  bool hasRetiredEnd_ : 1;
+  bool floatValid_ : 1;    // phaseSigma_/phaseNu_ are those of the current phase
+  bool brakeStops_ : 1;
+  uint8_t epoch_;
   uint16_t haltSegment_;
   uint16_t lastId_;        // where the device is when not moving
   float lastSigma_;

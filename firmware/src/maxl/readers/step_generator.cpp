@@ -1,97 +1,207 @@
 #include "maxl/readers/step_generator.h"
 
-namespace {
-// floor(a / b) for b > 0 (C++ division truncates towards zero).
-int64_t floorDiv(int64_t a, int64_t b) {
-  int64_t q = a / b;
-  if ((a % b != 0) && (a < 0)) q--;
-  return q;
-}
-}  // namespace
+#include "maxl/motion/fixed_point.h"
 
 MAXL_StepGenerator::MAXL_StepGenerator(uint8_t stepPin, uint8_t dirPin, float stepsPerUnit, bool invertDirection)
-    : stepPinNumber_(stepPin),
-      dirPinNumber_(dirPin),
-      invert_(invertDirection),
-      begun_(false),
-      direction_(0),
-      stepsPerUnit_(stepsPerUnit),
-      steps_(0) {
-  stepPin_.valid = false;
-  dirPin_.valid = false;
+    : begun_(false), direction_(0), steps_(0) {
+  this->stepPin().number = stepPin;
+  this->stepPin().valid = false;
+  this->dirPin().number = dirPin;
+  this->dirPin().valid = false;
+#if MAXL_STEP_TIMER
+  channel_.invert = invertDirection;
+#else
+  invert_ = invertDirection;
+#endif
   // s·2^16 = 2^32 / stepsPerUnit, at least 1 (so that stepping ends) and
   // below 2^47 (s below 2^31 units, 32 m per step).
   float q = stepsPerUnit > 0.0f ? 4294967296.0f / stepsPerUnit : 4294967296.0f;
   if (!(q >= 1.0f)) q = 1.0f;
   if (q > 1.4e14f) q = 1.4e14f;
-  int64_t stepQ = (int64_t)q;
-  sWhole_ = (int32_t)(stepQ >> 16);
-  sFrac_ = (uint16_t)(stepQ & 0xFFFF);
+  int64_t sq = (int64_t)q;
+  sWhole_ = (int32_t)(sq >> 16);
+  sFrac_ = (uint16_t)(sq & 0xFFFF);
   reference(0);
 }
 
 void MAXL_StepGenerator::begin() {
   if (begun_) return;
   begun_ = true;
-  maxl_fw::hal::makeOutput(stepPin_, stepPinNumber_);
-  maxl_fw::hal::makeOutput(dirPin_, dirPinNumber_);
-  maxl_fw::hal::writePin(stepPin_, false);
+  maxl_fw::hal::makeOutput(stepPin(), stepPin().number);
+  maxl_fw::hal::makeOutput(dirPin(), dirPin().number);
+  maxl_fw::hal::writePin(stepPin(), false);
 }
 
-
-// Ceilings of the thresholds from the exact upper one, 32-bit only (this runs
-// on every step). With up = U + f/2^16 and s = S + g/2^16:
-//   ceil(up)     = U + (f != 0)
-//   down = up − s = (U − S) + (f − g)/2^16, so
-//   ceil(down)   = U − S + 1 if f > g; U − S if f == g; and if f < g,
-//                  (U − S − 1) + ceil((f − g + 2^16)/2^16) = U − S.
-inline __attribute__((always_inline)) void MAXL_StepGenerator::refreshCeilings() {
-  upCeil_ = (int32_t)((uint32_t)upWhole_ + (upFrac_ != 0));
-  downCeil_ = (int32_t)((uint32_t)upWhole_ - (uint32_t)sWhole_ + (upFrac_ > sFrac_));
-}
-
+// n = floor(p/s + 1/2): the n whose thresholds hold p, (n − 1/2)·s <= p <
+// (n + 1/2)·s, found by bisection on "p is below the upper threshold of n"
+// (true from that n on), over the n whose thresholds fit in 32 bits.
 void MAXL_StepGenerator::reference(int32_t units) {
-  // n = floor(p/s + 1/2) = floor((2·p·2^16 + s_q) / (2·s_q)), s_q = s·2^16
-  int64_t stepQ = (int64_t)sWhole_ * 65536 + sFrac_;
-  int64_t n = floorDiv(2 * ((int64_t)units * 65536) + stepQ, 2 * stepQ);
-  steps_ = (int32_t)n;
-  int64_t upQ = n * stepQ + stepQ / 2;  // (n + 1/2)·s in Q16
-  upWhole_ = (int32_t)floorDiv(upQ, 65536);
-  upFrac_ = (uint16_t)(upQ - (int64_t)upWhole_ * 65536);
-  refreshCeilings();
+  int32_t limit = (int32_t)(0x7FFFFFFFul / (uint32_t)(sWhole_ + 1)) - 1;
+  int32_t lo = -limit, hi = limit;  // answer in [lo, hi]
+  while (lo < hi) {
+    int32_t mid = (int32_t)((uint32_t)lo + (((uint32_t)hi - (uint32_t)lo) >> 1));
+    setSteps(mid);
+    if (units < upCeil())
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  setSteps(lo);
 }
 
-inline __attribute__((always_inline)) void MAXL_StepGenerator::step(int8_t direction) {
+// (n + 1/2)·s in Q16, in 32-bit pieces: with s = S + F/2^16 and
+// h = floor(s·2^16/2) = Hw + Hf/2^16 (Hw = S/2, Hf = (S mod 2)·2^15 + F/2),
+//   (n·s + h)·2^16 = (n·S + Hw)·2^16 + n·F + Hf,
+//   n·F = floor(n·F/2^16)·2^16 + (n·F mod 2^16),  floor(n·F/2^16) = mulhi16(n, F),
+// and the low halves' sum carries into the whole part.
+void MAXL_StepGenerator::setSteps(int32_t n) {
+  steps_ = n;
+  uint16_t hf = (uint16_t)(((uint16_t)(sWhole_ & 1) << 15) | (sFrac_ >> 1));
+  uint16_t lo = (uint16_t)((uint16_t)n * sFrac_);
+  uint16_t frac = (uint16_t)(lo + hf);
+  upWhole_ = (int32_t)((uint32_t)n * (uint32_t)sWhole_ + (uint32_t)maxl_fw::mulhi16Cold(n, sFrac_) +
+                       (uint32_t)(sWhole_ >> 1) + (frac < lo ? 1u : 0u));
+  upFrac_ = frac;
+}
+
+// Thresholds after a step up or down: (n ± 1 + 1/2)·s, exactly.
+inline __attribute__((always_inline)) void MAXL_StepGenerator::thresholdUp() {
+  uint16_t frac = (uint16_t)(upFrac_ + sFrac_);
+  upWhole_ = (int32_t)((uint32_t)upWhole_ + (uint32_t)sWhole_ + (frac < upFrac_ ? 1u : 0u));
+  upFrac_ = frac;
+  steps_++;
+}
+inline __attribute__((always_inline)) void MAXL_StepGenerator::thresholdDown() {
+  uint16_t frac = (uint16_t)(upFrac_ - sFrac_);
+  upWhole_ = (int32_t)((uint32_t)upWhole_ - (uint32_t)sWhole_ - (upFrac_ < sFrac_ ? 1u : 0u));
+  upFrac_ = frac;
+  steps_--;
+}
+
+// One pulse per step, from loop() (the thresholds have moved already).
+void MAXL_StepGenerator::pulses(uint8_t count, int8_t direction) {
+  if (!count) return;
   if (!begun_) begin();
   if (direction != direction_) {
-    maxl_fw::hal::writePin(dirPin_, (direction > 0) != invert_);
+    maxl_fw::hal::writePin(dirPin(), (direction > 0) != inverted());
     maxl_fw::hal::directionSetupWait();
     direction_ = direction;
   }
-  maxl_fw::hal::writePin(stepPin_, true);
-  maxl_fw::hal::stepPulseWait();
-  maxl_fw::hal::writePin(stepPin_, false);
-  steps_ += direction;
+  while (count--) {
+    maxl_fw::hal::writePin(stepPin(), true);
+    maxl_fw::hal::stepPulseWait();
+    maxl_fw::hal::writePin(stepPin(), false);
+  }
 }
 
 bool MAXL_StepGenerator::moveTo(int32_t units) {
-  uint8_t budget = MAXL_MAX_STEPS_PER_EVALUATION;
-  while (units >= upCeil_) {
-    if (!budget--) return false;
-    step(1);
-    uint16_t frac = (uint16_t)(upFrac_ + sFrac_);
-    upWhole_ = (int32_t)((uint32_t)upWhole_ + (uint32_t)sWhole_ + (frac < upFrac_ ? 1u : 0u));
-    upFrac_ = frac;
-    refreshCeilings();
+  const uint8_t budget = MAXL_MAX_STEPS_PER_EVALUATION;
+  uint8_t n = stepsUpTo(units, budget);
+  pulses(n, 1);
+  if (!n) {
+    n = stepsDownTo(units, budget);
+    pulses(n, -1);
   }
-  while (units < downCeil_) {
-    if (!budget--) return false;
-    step(-1);
-    uint16_t frac = (uint16_t)(upFrac_ - sFrac_);
-    upWhole_ = (int32_t)((uint32_t)upWhole_ - (uint32_t)sWhole_ - (upFrac_ < sFrac_ ? 1u : 0u));
-    upFrac_ = frac;
-    refreshCeilings();
-  }
-  return true;
+  // all done unless the budget ran out (or a few more are due the other way:
+  // not possible, the thresholds are half a step either side of n·s)
+  return n < budget || (units < upCeil() && units >= downCeil());
 }
 
+// ---------------------------------------------------------------- timed
+
+// The window [0, w] µs; the position model m(t) = p0 + Δ·t/w, Δ = p1 − p0,
+// held back by `lag` units in the direction of motion (the caller chooses
+// the lag so that m is never ahead of the real path: stepper.h). Going up,
+// step k is due when m reaches U_k = U_1 + (k−1)·s, U_1 = (n + 1/2)·s the
+// next upper threshold; with m0 = m(0):
+//
+//   t_k = t_1 + (k−1)·I,   t_1 = (U_1 − m0)·r,   I = s·r,   r = w/Δ µs per unit
+//
+// In fixed point, with one 32-bit division per window:
+//   R   = ceil(w·2^20 / Δ)        r in Q20; w <= 2^11, so w·2^20 <= 2^31
+//   t_1 = x·R / 2^4  (Q16 µs)     x = U_1 − m0 = X + xf/2^16 (whole + fraction)
+//       = X·R/2^4 + (xf·R/2^16)/2^4
+//   I   = S·R/2^4 + (F·R/2^16)/2^4      s = S + F/2^16
+// X·R stays in 32 bits because U_1 <= m1 makes X <= Δ, so X·R <= w·2^20 + Δ;
+// S·R too when I is needed (2 steps or more: s <= Δ). xf·R/2^16 and F·R/2^16
+// are mulhi16 (fixed_point.h). R is rounded up and the two floors are made good
+// by + 2, so no time is early; R's rounding is at most 2^-20 µs per unit, so the
+// times are late by at most |Δ|·2^-20 µs (0.06 µs for 1 mm in a window) plus
+// 2^-16 µs per step. Thresholds the model already passed at 0 (the lag shrank,
+// a segment's end snapped to p1, a jump) are a burst at 0. Going down is the
+// mirror image, with the lower thresholds D_k = U_1 − k·s and "due when m < D".
+#if MAXL_STEP_TIMER
+namespace {
+__attribute__((noinline)) uint32_t timesR(uint32_t whole, uint16_t frac, uint32_t r) {
+  return ((whole * r) >> 4) + ((uint32_t)maxl_fw::mulhi16Cold((int32_t)r, frac) >> 4) + 2;
+}
+__attribute__((noinline)) void burstRun(MAXL_StepWindow& out, uint8_t count, bool backward) {
+  MAXL_StepWindow::Run& r = out.run[out.runs++];
+  r.first = 0;
+  r.interval = 0;
+  r.count = count;
+  r.backward = backward;
+}
+}  // namespace
+#endif
+
+// Moves the thresholds on while `units` is past them, at most `max` steps
+// (the count is not limited by anything else: the caller bounds it).
+uint8_t MAXL_StepGenerator::stepsUpTo(int32_t units, uint8_t max) {
+  uint8_t n = 0;
+  for (int32_t up = upCeil(); n < max && units >= up; up = upCeil(), n++) thresholdUp();
+  return n;
+}
+uint8_t MAXL_StepGenerator::stepsDownTo(int32_t units, uint8_t max) {
+  uint8_t n = 0;
+  for (int32_t down = downCeil(); n < max && units < down; down = downCeil(), n++) thresholdDown();
+  return n;
+}
+
+#if MAXL_STEP_TIMER
+void MAXL_StepGenerator::planWindow(uint16_t w, int32_t p0, int32_t p1, int32_t lag, MAXL_StepWindow& out) {
+  out.runs = 0;
+  int32_t delta = (int32_t)((uint32_t)p1 - (uint32_t)p0);
+  const uint8_t maxRun = maxl_fw::StepChannel::MAX_RUN;
+  if (w > 2048) w = 2048;
+  if (delta == 0) {
+    // at rest: catch up to the step p0 rounds to, either way, at once
+    uint8_t n = stepsUpTo(p0, maxRun);
+    if (n) return burstRun(out, n, false);
+    n = stepsDownTo(p0, maxRun);
+    if (n) burstRun(out, n, true);
+    return;
+  }
+  bool forward = delta > 0;
+  uint32_t dist = forward ? (uint32_t)delta : (uint32_t)0 - (uint32_t)delta;
+  int32_t back = forward ? -lag : lag;
+  int32_t m0 = (int32_t)((uint32_t)p0 + (uint32_t)back);
+  int32_t m1 = (int32_t)((uint32_t)p1 + (uint32_t)back);
+  uint8_t burst, n;
+  uint32_t whole;  // x = U_1 − m0 (or m0 − D_1) = whole + frac/2^16
+  uint16_t frac;
+  if (forward) {
+    burst = stepsUpTo(m0, maxRun);
+    whole = (uint32_t)upWhole_ - (uint32_t)m0;
+    frac = upFrac_;
+    n = stepsUpTo(m1, (uint8_t)(maxRun - burst));
+  } else {
+    burst = stepsDownTo(m0, maxRun);
+    // D_1 = (upWhole − S) + (upFrac − F)/2^16, borrowing; m0 − D_1 likewise
+    uint16_t dFrac = (uint16_t)(upFrac_ - sFrac_);
+    uint32_t dWhole = (uint32_t)upWhole_ - (uint32_t)sWhole_ - (upFrac_ < sFrac_ ? 1u : 0u);
+    whole = (uint32_t)m0 - dWhole - (dFrac ? 1u : 0u);
+    frac = (uint16_t)(0u - dFrac);
+    n = stepsDownTo(m1, (uint8_t)(maxRun - burst));
+  }
+  if (burst) burstRun(out, burst, !forward);
+  if (!n) return;
+  uint32_t r = (((uint32_t)w << 20) + dist - 1) / dist;
+  if (r > 0x7FFFFFFFul) r = 0x7FFFFFFFul;  // w = 2^11 and Δ = 1: one unit, one step at most
+  MAXL_StepWindow::Run& run = out.run[out.runs++];
+  run.first = timesR(whole, frac, r);
+  run.interval = n > 1 ? timesR((uint32_t)sWhole_, sFrac_, r) : 0;
+  run.count = n;
+  run.backward = !forward;
+}
+#endif  // MAXL_STEP_TIMER

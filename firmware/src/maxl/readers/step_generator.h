@@ -5,12 +5,19 @@
 //   n = floor(p/s + 1/2), i.e. (n − 1/2)·s <= p < (n + 1/2)·s.
 // So one step up is due when p reaches (n + 1/2)·s, one down when p falls
 // below (n − 1/2)·s. The upper threshold is kept exactly, as whole units plus
-// a 16-bit fraction (s is too: sWhole + sFrac/2^16), and both thresholds as
-// their ceilings in whole units, since p is whole: p >= x  <=>  p >= ceil(x),
-// and p < x  <=>  p < ceil(x). Then "is a step due?" is two 32-bit compares,
-// a step moves the thresholds with 32-bit additions, and an evaluation that
-// moved p by k steps emits all k (the paper's prototype emitted at most one
-// per call, capping the step rate at the loop rate).
+// a 16-bit fraction (s is too: sWhole + sFrac/2^16), and both thresholds are
+// compared through their ceilings in whole units, since p is whole:
+// p >= x  <=>  p >= ceil(x), and p < x  <=>  p < ceil(x). Then "is a step
+// due?" is two 32-bit compares, a step moves the thresholds with 32-bit
+// additions, and an evaluation that moved p by k steps emits all k (the
+// paper's prototype emitted at most one per call, capping the step rate at
+// the loop rate).
+//
+// Two ways to use it:
+//   moveTo(p)       polled: emits every step due now, from loop() (host, wasm,
+//                   and boards without a step timer)
+//   planWindow(...) timed: turns a window of the path into step times for the
+//                   step timer's interrupt (step_timer.h, MAXL_Stepper)
 #ifndef MAXL_READERS_STEP_GENERATOR_H
 #define MAXL_READERS_STEP_GENERATOR_H
 
@@ -18,6 +25,22 @@
 
 #include "maxl/config.h"
 #include "maxl/hal/hal.h"
+#include "maxl/readers/step_timer.h"
+
+// The steps of one window, as at most two runs: first a burst of steps that
+// are already due at the window's start (catching up), then steps at regular
+// times. Times are µs after the window's start in Q16.16, never before the
+// window's linear model reaches the step's threshold.
+struct MAXL_StepWindow {
+  struct Run {
+    uint32_t first;     // µs·2^16 after the window's start
+    uint32_t interval;  // µs·2^16 between steps (0: as fast as the timer goes)
+    uint8_t count;
+    bool backward;
+  };
+  Run run[2];
+  uint8_t runs;
+};
 
 class MAXL_StepGenerator {
  public:
@@ -34,28 +57,63 @@ class MAXL_StepGenerator {
   // Returns true when the motor has reached that step.
   bool moveTo(int32_t units);
 
+  // The step count: emitted (polled), or planned (timed: MAXL_Stepper
+  // subtracts what its timer has still to send).
   int32_t steps() const { return steps_; }
-  float stepsPerUnit() const { return stepsPerUnit_; }
+  // As given to the constructor (from the Q16 step size: 2^32 / (s·2^16)).
+  float stepsPerUnit() const { return 4294967296.0f / ((float)sWhole_ * 65536.0f + (float)sFrac_); }
+  // Units per step, rounded down (at least 1).
+  int32_t unitsPerStep() const { return sWhole_ > 0 ? sWhole_ : 1; }
+
+  // Sets the step count to n (its thresholds with it), without stepping.
+  void setSteps(int32_t n);
+
+#if MAXL_STEP_TIMER
+  // ---- timed stepping
+  // Plans the steps of a window of `w` µs in which the position goes from p0
+  // to p1 (linearly, as far as the steps are concerned), each step held back
+  // by `lag` units (>= 0) in the direction of motion, at most
+  // StepChannel::MAX_RUN per run; moves the step count on by what it planned.
+  // Where p0 == p1 (at rest), only the catch-up burst.
+  __attribute__((noinline)) void planWindow(uint16_t w, int32_t p0, int32_t p1, int32_t lag, MAXL_StepWindow& out);
+  maxl_fw::StepChannel& channel() { return channel_; }
+  const maxl_fw::StepChannel& channel() const { return channel_; }
+  bool pinsValid() const { return channel_.stepPin.valid && channel_.dirPin.valid; }
+#endif
 
  private:
-  void refreshCeilings();
-  void step(int8_t direction);
+  void pulses(uint8_t count, int8_t direction);
+  // Next thresholds' ceilings (see the top of this file).
+  int32_t upCeil() const { return (int32_t)((uint32_t)upWhole_ + (upFrac_ != 0)); }
+  int32_t downCeil() const { return (int32_t)((uint32_t)upWhole_ - (uint32_t)sWhole_ + (upFrac_ > sFrac_)); }
+  void thresholdUp();
+  void thresholdDown();
+  uint8_t stepsUpTo(int32_t units, uint8_t max);
+  uint8_t stepsDownTo(int32_t units, uint8_t max);
 
+#if MAXL_STEP_TIMER
+  // the pins live in the channel (the interrupt's), once
+  maxl_fw::hal::OutputPin& stepPin() { return channel_.stepPin; }
+  maxl_fw::hal::OutputPin& dirPin() { return channel_.dirPin; }
+  bool inverted() const { return channel_.invert; }
+#else
+  maxl_fw::hal::OutputPin& stepPin() { return stepPin_; }
+  maxl_fw::hal::OutputPin& dirPin() { return dirPin_; }
+  bool inverted() const { return invert_; }
   maxl_fw::hal::OutputPin stepPin_;
   maxl_fw::hal::OutputPin dirPin_;
-  uint8_t stepPinNumber_;
-  uint8_t dirPinNumber_;
   bool invert_;
+#endif
   bool begun_;
-  int8_t direction_;  // last direction written: +1, -1, or 0 before the first step
-  float stepsPerUnit_;
+  int8_t direction_;  // last direction written by step(): +1, -1, or 0 before the first step
   int32_t sWhole_;    // s = sWhole_ + sFrac_ / 2^16 units per step
   uint16_t sFrac_;
   int32_t upWhole_;   // (n + 1/2)·s = upWhole_ + upFrac_ / 2^16
   uint16_t upFrac_;
-  int32_t upCeil_;    // ceil((n + 1/2)·s)
-  int32_t downCeil_;  // ceil((n − 1/2)·s)
   int32_t steps_;
+#if MAXL_STEP_TIMER
+  maxl_fw::StepChannel channel_;
+#endif
 };
 
 #endif

@@ -6,40 +6,86 @@
 // It is the efficient form of the paper's Listing 3 (a
 // MAXL_TrackPositionLinear whose callback counts steps), with every due step
 // emitted (see step_generator.h).
+//
+// Where the board has a step timer (MAXL_STEP_TIMER: 16 MHz AVRs, Timer 1),
+// steps come from its interrupt at their own times (step_timer.h), planned
+// by loop() a few ms ahead:
+//
+//   loop():    from where the last plan ended (t0), take the next window of
+//              the path, up to the next multiple of its length W (a power of
+//              two, 128..2048 µs, shorter where the path bends more), or to
+//              the end of its phase, segment or brake piece, whichever comes
+//              first; evaluate the position at the window's end with the
+//              device's own fixed-point path (Motion's Lookahead, bit for bit
+//              what Motion will compute); turn the window into step times
+//              (MAXL_StepWindow) and hand them to the timer. Repeat until the
+//              plan reaches MAXL_STEP_LEAD_US past the device clock, or what is
+//              certain ends (no timing yet, braking, a pending HALT).
+//   interrupt: emits each step at its time.
+//
+// Inside a window the steps follow a straight line between the exact
+// positions at its ends. A piece of the path is a quadratic p(t), with half
+// acceleration c (units/µs²). Where it slows down (c against the motion) the
+// chord lies behind the path, so steps from it come late, never early. Where
+// it speeds up the chord lies ahead by up to c·W²/4 (at the middle), so the
+// line is moved back by exactly that: it is then the tangent at the window's
+// middle (same slope (p1 − p0)/W = v + c·W, touching at W/2), and a convex
+// path is never below its tangent. Either way every step lags the exact path
+// by at most c·W²/4 plus MAXL_STEP_LAG_UNITS (which covers the fixed-point
+// path's own error), i.e. by that distance over the speed in time: W is
+// halved until c·W²/4 is at most s/8, so the lag stays under 1/8 step period
+// plus the margin, at any acceleration the fixed-point path allows down to
+// W = 128 µs.
+//
+// Without a timer (host tests by default, wasm) it steps from loop(): every
+// step due at each evaluation.
 #ifndef MAXL_READERS_STEPPER_H
 #define MAXL_READERS_STEPPER_H
 
 #include <stdint.h>
 
+#include "maxl/motion/motion.h"
 #include "maxl/readers/step_generator.h"
 #include "maxl/readers/tracks.h"
 
 class MAXL_Stepper : public MAXL_TrackPositionLinear {
  public:
-  MAXL_Stepper(const char* name, uint8_t stepPin, uint8_t dirPin, float stepsPerUnit, bool invertDirection = false)
-      : MAXL_TrackPositionLinear(name), generator_(stepPin, dirPin, stepsPerUnit, invertDirection) {}
+  MAXL_Stepper(const char* name, uint8_t stepPin, uint8_t dirPin, float stepsPerUnit, bool invertDirection = false);
 
   MAXL_StepGenerator& generator() { return generator_; }
-  int32_t steps() const { return generator_.steps(); }
+  // The motor's step count: steps emitted so far.
+  int32_t steps() const;
+
+  // Steps from the step timer's interrupt (true) or from loop() (false).
+  // Asks for one; returns what it got (false without a timer, with invalid
+  // pins, or when MAXL_STEP_CHANNELS steppers already use it). Change it only
+  // while not subscribed. The default is MAXL_STEP_TIMER_DEFAULT.
+  bool useStepTimer(bool on);
+  bool usesStepTimer() const { return timed_; }
 
  protected:
-  void onBegin() { generator_.begin(); }
-  void onPosition(int32_t units, bool first) {
-    if (first)
-      generator_.reference(units);
-    else
-      behind_ = !generator_.moveTo(units);
-  }
-  // A bounded catch-up (see MAXL_MAX_STEPS_PER_EVALUATION) goes on even when
-  // the position does not change any more.
-  void onTick(MAXL_Device& device) {
-    MAXL_TrackPositionLinear::onTick(device);
-    if (behind_) behind_ = !generator_.moveTo(positionUnits());
-  }
+  void onBegin();
+  void onPosition(int32_t units, bool first);
+  void onTick(MAXL_Device& device);
+  void onUnsubscribe();
 
  private:
   MAXL_StepGenerator generator_;
-  bool behind_ = false;
+  bool behind_ : 1;
+  bool timed_ : 1;
+#if MAXL_STEP_TIMER
+  bool wantTimer_ : 1;
+  bool synced_ : 1;
+  maxl_fw::Lookahead look_;
+  uint32_t planned_;      // device µs the plan reaches
+  int32_t plannedUnits_;  // the position there
+  void plan(MAXL_Device& device);
+  void resync(const maxl_fw::Motion& motion, uint32_t now);
+  void schedule(uint32_t t0, uint32_t t1, int32_t p0, int32_t p1, int32_t curvature, uint32_t now);
+  uint16_t windowFor(int32_t curvature) const;
+  bool tooManySteps(int32_t delta) const;
+  void stopTimed();
+#endif
 };
 
 #endif
