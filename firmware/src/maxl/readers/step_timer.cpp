@@ -1,5 +1,7 @@
 #include "maxl/readers/step_timer.h"
 
+#include <stddef.h>
+
 #if MAXL_STEP_TIMER
 
 // The interrupt's code is inlined into the vector, so that it saves only the
@@ -10,6 +12,26 @@ namespace maxl_fw {
 
 StepChannel* StepTimer::channels_[MAXL_STEP_CHANNELS];
 uint8_t StepTimer::count_ = 0;
+
+namespace {
+static_assert(offsetof(StepRun, next) == 0 && offsetof(StepRun, interval) == 4, "advance() adds byte 4+i to byte i");
+// r->next += r->interval, byte by byte (on AVR two registers, not eight).
+MAXL_STEP_ISR_INLINE void advance(StepRun* r) {
+#if defined(__AVR__)
+  uint8_t a, b;
+  __asm__ __volatile__(
+      "ldd %0, %a2+0\n\tldd %1, %a2+4\n\tadd %0, %1\n\tstd %a2+0, %0\n\t"
+      "ldd %0, %a2+1\n\tldd %1, %a2+5\n\tadc %0, %1\n\tstd %a2+1, %0\n\t"
+      "ldd %0, %a2+2\n\tldd %1, %a2+6\n\tadc %0, %1\n\tstd %a2+2, %0\n\t"
+      "ldd %0, %a2+3\n\tldd %1, %a2+7\n\tadc %0, %1\n\tstd %a2+3, %0"
+      : "=&r"(a), "=&r"(b)
+      : "b"(r)
+      : "memory");
+#else
+  r->next += r->interval;
+#endif
+}
+}  // namespace
 
 // ---------------------------------------------------------------- channel
 
@@ -79,26 +101,32 @@ int16_t StepChannel::dropAll() {
   return dropped;
 }
 
-// The interrupt's work for one channel (interrupts are off).
+// The interrupt's work for one channel (interrupts are off): raises the STEP
+// pin if a step is due at `now` and moves the ring on; the caller lowers the
+// pin after the pulse (finish()).
 MAXL_STEP_ISR_INLINE void StepChannel::service(uint16_t now) {
   if (!count_) return;
   StepRun& r = ring_[head_];
-  if ((int16_t)((uint16_t)(r.next >> 16) - now) > 0) return;
+  if ((int16_t)(r.tick() - now) > 0) return;
   hal::writePinFromIsr(stepPin, true);
-  uint16_t rose = hal::stepTimerNow();
-  r.next += r.interval;
+  advance(&r);
   r.count--;  // bits 0..6 are at least 1 here, so BACKWARD stays
-  bool more = true;
   if (!(r.count & MAX_RUN)) {
     uint8_t h = (uint8_t)(head_ + 1);
     head_ = h >= MAXL_STEP_RING ? 0 : h;
     count_ = (uint8_t)(count_ - 1);
-    more = count_ != 0;
   }
-  hal::stepPulseHold(rose);
+}
+
+// After the pulse: STEP low (whether or not it rose), then DIR for the next
+// run (the driver latched DIR at the rising edge).
+MAXL_STEP_ISR_INLINE void StepChannel::finish() {
   hal::writePinFromIsr(stepPin, false);
-  // after the pulse: the driver latched DIR at its rising edge
-  if (more) setDirection(ring_[head_].count & BACKWARD);
+  if (!count_) return;
+  uint8_t backward = ring_[head_].count & BACKWARD;
+  if (backward == backward_) return;
+  backward_ = backward;
+  hal::writePinFromIsr(dirPin, (backward == 0) != invert);
 }
 
 // ---------------------------------------------------------------- timer
@@ -156,10 +184,17 @@ void StepTimer::kick() {
 }
 
 namespace {
+// Every due channel's STEP pin rises and its ring moves on, the compare is
+// set while the pulses are high, then every STEP pin falls (a low pin stays
+// low) and DIR follows the next run.
 MAXL_STEP_ISR_INLINE void serviceAll() {
   uint16_t now = hal::stepTimerNow();
-  for (uint8_t i = 0; i < StepTimer::count_; i++) StepTimer::channels_[i]->service(now);
+  StepChannel* const* end = StepTimer::channels_ + StepTimer::count_;
+  for (StepChannel* const* c = StepTimer::channels_; c != end; c++) (*c)->service(now);
+  uint16_t rose = hal::stepTimerNow();
   StepTimer::arm();
+  hal::stepPulseHold(rose);
+  for (StepChannel* const* c = StepTimer::channels_; c != end; c++) (*c)->finish();
 }
 }  // namespace
 

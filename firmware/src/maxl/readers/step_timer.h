@@ -16,13 +16,14 @@
 // a few ms of the timer (the planner plans at most MAXL_STEP_LEAD_US ahead, and
 // never more than a few ms behind), so 16-bit signed differences order them.
 //
-// The interrupt's share of a step: pin high, one 32-bit add, pin low (after
-// MAXL_STEP_PULSE_TICKS), and a new compare. Runs are consumed in place: the
-// head of the ring is the run going out.
+// The interrupt's share of a step: pin high, one 32-bit add, a new compare
+// (while the pulse is high), pin low (after MAXL_STEP_PULSE_TICKS). Runs are
+// consumed in place: the head of the ring is the run going out.
 #ifndef MAXL_READERS_STEP_TIMER_H
 #define MAXL_READERS_STEP_TIMER_H
 
 #include <stdint.h>
+#include <string.h>
 
 #include "maxl/config.h"
 #include "maxl/hal/hal.h"
@@ -35,6 +36,17 @@ struct StepRun {
   uint32_t next;      // Q16.16 ticks of the next step, biased by 0xFFFF (see above)
   uint32_t interval;  // Q16.16 ticks between steps
   uint8_t count;      // steps left (bits 0..6), BACKWARD (bit 7)
+
+  // The integer part of `next` (the timer count of the next step).
+  uint16_t tick() const {
+#if defined(__AVR__)
+    uint16_t t;
+    memcpy(&t, (const uint8_t*)&next + 2, 2);  // little-endian: the high half, two loads
+    return t;
+#else
+    return (uint16_t)(next >> 16);
+#endif
+  }
 };
 
 class StepChannel {
@@ -59,12 +71,14 @@ class StepChannel {
   int16_t clear() { return dropAll(); }
 
   // ---- for StepTimer (interrupts off)
-  // Emits this channel's step if it is due at `now` (the count).
+  // Raises STEP and takes the step off the ring if one is due at `now`.
   inline void service(uint16_t now);
+  // STEP low, then DIR for the next run.
+  inline void finish();
   // The count of the next step, if there is one.
   bool nextDue(uint16_t& at) const {
     if (!count_) return false;
-    at = (uint16_t)(ring_[head_].next >> 16);
+    at = ring_[head_].tick();
     return true;
   }
 
