@@ -15,6 +15,13 @@
  *   jogBrakeLatencyMs, jogRestLatencyMs  hold-to-jog: from the key's release to braking, and to rest
  *
  * Options: --seconds N (streaming window, default 20), --full (stream the whole job).
+ * UI_BENCH_ARGS="…" replaces chromium's flags. The default, --disable-gpu (as the e2e
+ * specs run), composites in software: each WebGL frame is read back on the main
+ * thread, so a slow software draw shows as a long task there. Without it
+ * (UI_BENCH_ARGS="--no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader
+ * --ignore-gpu-blocklist"), WebGL and compositing run in the GPU process, as in a
+ * desktop Chrome with a GPU: the main thread stays free and fps shows the software
+ * renderer's speed instead.
  * Prints one JSON object as its last line.
  */
 import { chromium } from '@playwright/test';
@@ -26,7 +33,7 @@ const seconds = Number(args[args.indexOf('--seconds') + 1]) > 0 && args.includes
 const full = args.includes('--full');
 const PORT = 5175;
 const URL_ = `http://localhost:${PORT}/`;
-const ARGS = ['--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update', '--disable-sync'];
+const ARGS = process.env.UI_BENCH_ARGS ? process.env.UI_BENCH_ARGS.split(' ') : ['--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update', '--disable-sync'];
 
 const server = spawn('npx', ['vite', '--port', String(PORT), '--strictPort'], { env: { ...process.env, MAXL_NO_HMR: '1' }, stdio: 'ignore', detached: true });
 const stopServer = () => {
@@ -55,6 +62,8 @@ await waitForServer();
 const browser = await chromium.launch({ executablePath: process.env.CHROMIUM_PATH ?? '/usr/bin/chromium', args: ARGS });
 const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
 page.on('pageerror', (e) => console.error(`[page error] ${e.message}`));
+page.on('crash', () => console.error('[ui] the page crashed'));
+page.on('console', (m) => { if (m.type() === 'error') console.error(`[console] ${m.text()}`); });
 await page.goto(URL_);
 await page.waitForFunction(() => document.querySelector('[data-testid=phase]')?.textContent === 'ready', null, { timeout: 60_000 });
 console.error('[ui] workbench ready on the simulated light painter');
@@ -105,8 +114,10 @@ await page.waitForFunction(() => ['cancelled', 'done', 'failed'].includes(window
 
 // A stream that went wrong leaves its author stopped: start a fresh one (Re-arm) for what follows.
 const rearm = async () => {
+  // The page shows 'ready' until the worker's next report: wait for a READY logged after the re-arm.
+  const before = await page.evaluate(() => window.maxlWorkbench.log.at(-1)?.id ?? 0);
   await page.evaluate(() => window.maxlWorkbench.send({ type: 'rearm' }));
-  await page.waitForFunction(() => window.maxlWorkbench.machine?.phase === 'ready', null, { timeout: 60_000 });
+  await page.waitForFunction((id) => window.maxlWorkbench.log.some((e) => e.id > id && e.code === 'READY') && window.maxlWorkbench.machine?.phase === 'ready', before, { timeout: 60_000 });
 };
 await rearm();
 
@@ -136,12 +147,24 @@ await rearm();
 
 // 3. Hold-to-jog: hold → for 1 s, release, read the stop the worker measured.
 await page.evaluate(() => window.maxlWorkbench.send({ type: 'go-to-origin', speed: 100 }));
-await page.waitForFunction(() => window.maxlWorkbench.speed === 0 && Math.abs(window.maxlWorkbench.position[0]) < 1e-6, null, { timeout: 60_000 });
+await page
+  .waitForFunction(() => window.maxlWorkbench.speed === 0 && Math.abs(window.maxlWorkbench.position[0]) < 1e-6, null, { timeout: 60_000 })
+  .catch(async (err) => {
+    const state = await page.evaluate(() => ({ position: window.maxlWorkbench.position, speed: window.maxlWorkbench.speed, phase: window.maxlWorkbench.machine?.phase, log: window.maxlWorkbench.log.slice(-5).map((e) => `${e.code}: ${e.message}`) }));
+    throw new Error(`go to origin did not end at the origin: ${JSON.stringify(state)} (${err.message})`);
+  });
 await page.keyboard.down('ArrowRight');
 await delay(1000);
 await page.keyboard.up('ArrowRight');
 await page.waitForFunction(() => window.maxlWorkbench.jogReport !== null, null, { timeout: 10_000 });
 const jog = await page.evaluate(() => window.maxlWorkbench.jogReport);
+// Which WebGL renderer drew it: here always a software one (SwiftShader), which is
+// what bounds fps and, with --disable-gpu, the main thread's longest task.
+const renderer = await page.evaluate(() => {
+  const gl = document.createElement('canvas').getContext('webgl2');
+  const info = gl?.getExtension('WEBGL_debug_renderer_info');
+  return info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : 'unknown';
+});
 
 await browser.close();
 stopServer();
@@ -162,6 +185,8 @@ const result = {
   jogRestLatencyMs: Math.round(jog.restLatency_ms * 10) / 10,
   jogLeadMs: Math.round(jog.lead_ms * 10) / 10,
   jogDeliveryMs: Math.round(jog.delivery_ms * 10) / 10,
+  webglRenderer: renderer,
+  chromiumArgs: ARGS.join(' '),
   targets: { longestTaskMs: 50, showMillionMs: 2000 },
 };
 console.log(JSON.stringify(result));
