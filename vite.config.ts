@@ -16,7 +16,7 @@ export default defineConfig({
   build: { outDir: '../dist', emptyOutDir: true },
   test: {
     root: here,
-    include: ['core/**/*.test.ts'],
+    include: ['core/**/*.test.ts', 'app/**/*.test.ts'],
     setupFiles: ['core/testing/setup.ts'],
   },
 });
