@@ -7,9 +7,13 @@
  * long) shrinks many times over. The view draws it while one millimetre covers too
  * few pixels for the difference to show, and the full path when zoomed in.
  *
- * Iterative (an explicit stack, no recursion depth limit): O(n log n) on typical
- * paths, so a million points take well under a second.
+ * Iterative (an explicit stack, no recursion depth limit), and run on stretches
+ * of CHUNK vertices whose ends are always kept: a path that winds round and round
+ * (a spiral) otherwise splits one vertex at a time off long chords, O(n²). Chunks
+ * bound the work at O(n·CHUNK) and cost one kept vertex per CHUNK.
  */
+const CHUNK = 1024;
+
 export interface Decimated {
   vertices: Float32Array;
   /** For each vertex kept, the index of the full path's vertex it is (ascending). */
@@ -23,7 +27,12 @@ export function decimate(vertices: Float32Array, tolerance: number): Decimated {
   keep[0] = 1;
   keep[n - 1] = 1;
   const t2 = tolerance * tolerance;
-  const stack: number[] = [0, n - 1];
+  const stack: number[] = [];
+  for (let a = 0; a < n - 1; a += CHUNK) {
+    const b = Math.min(n - 1, a + CHUNK);
+    keep[b] = 1;
+    stack.push(a, b);
+  }
   while (stack.length > 0) {
     const last = stack.pop() as number;
     const first = stack.pop() as number;
