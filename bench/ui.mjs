@@ -185,6 +185,7 @@ const result = {
   jogRestLatencyMs: Math.round(jog.restLatency_ms * 10) / 10,
   jogLeadMs: Math.round(jog.lead_ms * 10) / 10,
   jogDeliveryMs: Math.round(jog.delivery_ms * 10) / 10,
+  jogLockedAheadMs: Math.round(jog.lockedAhead_ms * 10) / 10,
   webglRenderer: renderer,
   chromiumArgs: ARGS.join(' '),
   targets: { longestTaskMs: 50, showMillionMs: 2000 },
