@@ -55,7 +55,12 @@ for (const d of preset.devices) {
 }
 const started = performance.now();
 const sim = await createSimulatedMachine(preset, scheduler, { seed: SEED, loader: nodeWasmLoader(), clocks, links });
-const maxl = createMAXL(sim.config, { links: Object.values(sim.links), scheduler });
+// SYNC_PING_MS: the steady ping period to try (default: the session's).
+const pingEvery_us = process.env.SYNC_PING_MS ? Number(process.env.SYNC_PING_MS) * 1000 : undefined;
+// SYNC_YOUNG_S: how long a new session pings at the burst period (default: the session's).
+const youngFor_us = process.env.SYNC_YOUNG_S ? Number(process.env.SYNC_YOUNG_S) * 1e6 : undefined;
+const session = { ...(pingEvery_us ? { pingEvery_us } : {}), ...(youngFor_us ? { youngFor_us } : {}) };
+const maxl = createMAXL(sim.config, { links: Object.values(sim.links), scheduler, session });
 const ready = maxl.begin();
 await scheduler.runWhile(() => true, 1_500_000);
 await ready;

@@ -54,6 +54,8 @@ export interface SessionOptions {
   pingEvery_us: number;
   /** ping period (µs) during a burst (pingBurst), to fit a clock model quickly */
   burstPingEvery_us: number;
+  /** a session pings at the burst period for this long after it opens (µs) */
+  youngFor_us: number;
   /** unacknowledged frames in flight at most */
   window: number;
 }
@@ -62,8 +64,9 @@ export const DEFAULT_SESSION: SessionOptions = {
   helloTimeout_us: 1_000_000,
   resendAfter_us: 4_000,
   silence_us: 300_000,
-  pingEvery_us: 10_000,
+  pingEvery_us: 25_000,
   burstPingEvery_us: 4_000,
+  youngFor_us: 120_000_000,
   window: 8,
 };
 
@@ -455,7 +458,7 @@ export class DeviceSession {
       // Fast while the model is young (it converges with the number of exchanges),
       // then at the session's pace: burstPingEvery_us for the first ten minutes, then pingEvery_us.
       const age = this.scheduler.now() - this.openedAt;
-      const young = age < 600_000_000 || this.scheduler.now() < this.burstUntil ? this.options.burstPingEvery_us : Infinity;
+      const young = age < this.options.youngFor_us || this.scheduler.now() < this.burstUntil ? this.options.burstPingEvery_us : Infinity;
       const every = Math.min(young, this.options.pingEvery_us);
       this.timers.ping = this.scheduler.after(every * (0.75 + 0.5 * random()), tick);
     };
