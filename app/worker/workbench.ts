@@ -41,14 +41,17 @@ interface DeviceConnection {
 
 /**
  * Streaming margins for real boards, in real time in a browser worker. The core's
- * defaults (1 ms of margin) suit exact timers; here timers fire late by several ms
- * whenever the worker is busy, and a segment that arrives too late to run stops the
- * stream. So: 30 ms on the lead, 50 ms before a start from rest. The cost: a
- * hold-to-jog release brakes about 2·RTT + 30 ms later, and a move from rest starts
- * ~50 ms later. A simulated machine runs on paced virtual time (PacedScheduler),
- * where every timer fires at its exact time: it keeps the core's defaults.
+ * defaults (1 ms of margin) suit exact timers. Here the worker's timers fire late
+ * whenever it is busy, and every byte to and from a board crosses the page's main
+ * thread (the port's streams belong to the page, which transferred them here), so
+ * a long task on the page (a software-rendered WebGL frame, a layout) holds the
+ * stream back: 30 ms of margin starved the boards in 3 of 5 e2e runs, 80 ms in
+ * none of 5. So: 80 ms on the lead and before a start from rest. The cost: a
+ * hold-to-jog release brakes about 2·RTT + 80 ms later on real boards. A simulated
+ * machine runs on paced virtual time (PacedScheduler), where every timer fires at
+ * its exact time and no byte crosses the page: it keeps the core's defaults.
  */
-const REAL_TIME_STREAMER = { minLead_us: 30_000, leadMargin_us: 30_000, startMargin_us: 50_000 };
+const REAL_TIME_STREAMER = { minLead_us: 80_000, leadMargin_us: 80_000, startMargin_us: 80_000 };
 /** Clock sync before streaming starts. */
 const SYNC_BEFORE_START_US = 2_000_000;
 

@@ -2,9 +2,12 @@
  * The simulated boards behind the fake navigator.serial, in their own worker (as
  * real boards are their own computers): a simulated machine in real time, whose
  * links' author ends are transferred to the page as the fake ports' streams.
+ * The boards run on paced virtual time: like firmware, which loops without
+ * waiting on a browser's timers, every device loop and link delay happens at its
+ * own time; only the author, in the app's worker, is subject to real-time delays.
  */
 /// <reference lib="webworker" />
-import { RealScheduler } from '../../core/index.ts';
+import { PacedScheduler } from '../../core/index.ts';
 import { createSimulatedMachine, type SimulatedMachine } from '../../core/sim/machine.ts';
 import { fetchWasmLoader } from '../../core/sim/device/wasmLoader.ts';
 import { PRESETS } from '../../core/sim/presets/index.ts';
@@ -16,7 +19,7 @@ scope.onmessage = async (m: MessageEvent<{ type: 'start'; presetId: string } | {
   const msg = m.data;
   if (msg.type === 'start') {
     const preset = PRESETS[msg.presetId]();
-    sim = await createSimulatedMachine(preset, new RealScheduler(), { loader: fetchWasmLoader(new URL('/firmware/', self.location.href).href) });
+    sim = await createSimulatedMachine(preset, new PacedScheduler(), { loader: fetchWasmLoader(new URL('/firmware/', self.location.href).href), loopPeriod_us: 100 });
     const ports = preset.devices.map((d) => ({ name: d.name, readable: sim!.links[d.name].readable, writable: sim!.links[d.name].writable }));
     scope.postMessage({ type: 'ready', ports }, ports.flatMap((p) => [p.readable, p.writable]) as unknown as Transferable[]);
   } else if (msg.type === 'truth' && sim) {
