@@ -60,8 +60,6 @@ test('Add device runs the real WebSerial connect code against a fake navigator.s
   await expect(devices.nth(0)).toContainText('USB 2341:0043');
   await expect(devices.nth(0)).toContainText('fw ');
   await expect(devices.nth(0).getByTestId('rtt')).toHaveText(/\d+(\.\d+)? (µs|ms)/);
-  await screenshot(page, '09-webserial-boards');
-
   // A jog moves the motors behind the fake ports.
   const before = await motorSteps(page);
   await page.getByTestId('step-10').click();
@@ -70,6 +68,9 @@ test('Add device runs the real WebSerial connect code against a fake navigator.s
   // CoreXY at 80 steps/mm: +10 mm in x is +800 steps on a and on b.
   await expect.poll(async () => (await motorSteps(page)).a - before.a, { timeout: 10_000 }).toBe(800);
   expect((await motorSteps(page)).b - before.b).toBe(800);
+  // Taken once at rest: a headless screenshot holds the page's main thread, which the
+  // ports' bytes cross on their way to the worker.
+  await screenshot(page, '09-webserial-boards');
 
   // Granted ports reconnect on load.
   await page.reload();

@@ -54,7 +54,10 @@ export class TrajectoryView {
   ) {
     this.overlay = new ToolOverlay(overlayCanvas);
     this.renderer = new THREE.WebGLRenderer({ canvas, antialias: false });
-    this.renderer.setPixelRatio(Math.min(2, window.devicePixelRatio));
+    // A software renderer (no GPU: SwiftShader, llvmpipe) draws every pixel on the CPU,
+    // and with software compositing the page waits for each frame: draw it at 3/4 of
+    // the CSS pixels there. A GPU gets the display's full resolution.
+    this.renderer.setPixelRatio(softwareRenderer(this.renderer.getContext()) ? 0.75 : Math.min(2, window.devicePixelRatio));
     this.scene.background = new THREE.Color(SCENE_COLORS.background);
     this.scene.add(
       this.workArea.group,
@@ -230,4 +233,11 @@ export class TrajectoryView {
     this.camera.updateProjectionMatrix();
     this.requestRender();
   }
+}
+
+/** Whether WebGL is drawn in software: no GPU, or one the browser refused. */
+function softwareRenderer(gl: WebGLRenderingContext | WebGL2RenderingContext): boolean {
+  const info = gl.getExtension('WEBGL_debug_renderer_info');
+  const name = info ? String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL)) : '';
+  return /swiftshader|llvmpipe|software/i.test(name);
 }
