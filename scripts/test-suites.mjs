@@ -7,7 +7,7 @@ export const suites = [
   },
   {
     name: 'unit',
-    describe: 'vitest: core planner, queue, tracks, transforms (property tests included)',
+    describe: 'vitest: the core (planner property tests, queue, tracks, codec vectors, sessions, clock sync, serialport link), the app units, and the simulated machine end to end in virtual time',
     command: ['npx', 'vitest', 'run'],
     tools: ['socat'],
   },
