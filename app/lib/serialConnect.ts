@@ -7,8 +7,7 @@
  */
 /// <reference types="w3c-web-serial" />
 
-/** The firmware's default rate (MAXL_DEFAULT_BAUD); native-USB boards ignore it. */
-export const MAXL_BAUD = 250_000;
+import { MAXL_DEFAULT_BAUD } from '../../core/net/link.ts';
 
 /** What navigator.serial offers, and what the polyfill offers in its place. */
 export interface SerialApi {
@@ -64,7 +63,7 @@ export interface OpenedPort {
 
 /** Opens a port (if it is not open yet) and returns its streams, ready to transfer to the worker. */
 export async function openPort(port: SerialPortLike): Promise<OpenedPort> {
-  if (!port.readable || !port.writable) await port.open({ baudRate: MAXL_BAUD });
+  if (!port.readable || !port.writable) await port.open({ baudRate: MAXL_DEFAULT_BAUD });
   const { readable, writable } = port;
   if (!readable || !writable) throw new Error(`${portLabel(port)} opened without streams`);
   return { label: portLabel(port), readable, writable };

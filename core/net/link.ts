@@ -4,6 +4,9 @@
  * decision 6). WebSerial, web-serial-polyfill, Node's serialport and the simulator
  * all provide one; the runtime cannot tell them apart.
  */
+/** The firmware's default serial rate (firmware MAXL_DEFAULT_BAUD); native-USB boards ignore it. */
+export const MAXL_DEFAULT_BAUD = 250_000;
+
 export interface Link {
   readonly readable: ReadableStream<Uint8Array>;
   readonly writable: WritableStream<Uint8Array>;

@@ -12,10 +12,7 @@
  * load its native binding.
  */
 import { MaxlError } from '../errors.ts';
-import type { Link } from './link.ts';
-
-/** The firmware's default rate (firmware MAXL_DEFAULT_BAUD); native-USB boards ignore it. */
-export const DEFAULT_BAUD = 250_000;
+import { MAXL_DEFAULT_BAUD, type Link } from './link.ts';
 
 export interface SerialportLinkOptions {
   baudRate?: number;
@@ -34,7 +31,7 @@ interface NodePort {
 /** Opens `path` and resolves to a link once the port is open; a port that cannot be opened rejects with DEVICE_UNAVAILABLE. */
 export async function openSerialportLink(path: string, options: SerialportLinkOptions = {}): Promise<Link> {
   const { SerialPort } = await import('serialport');
-  const baudRate = options.baudRate ?? DEFAULT_BAUD;
+  const baudRate = options.baudRate ?? MAXL_DEFAULT_BAUD;
   const port = await new Promise<NodePort>((resolve, reject) => {
     const p: NodePort = new SerialPort({ path, baudRate, autoOpen: true }, (err) =>
       err ? reject(new MaxlError('DEVICE_UNAVAILABLE', `cannot open serial port ${path}: ${err.message}`, 'path')) : resolve(p),
