@@ -36,7 +36,6 @@ export class PacedScheduler extends BaseScheduler {
   private wakeAt = Infinity;
   private running = false;
   private stopped = false;
-  private worstLag = 0;
 
   constructor(options: PacedSchedulerOptions = {}) {
     super();
@@ -62,18 +61,13 @@ export class PacedScheduler extends BaseScheduler {
   }
 
   /** The wall clock, on the virtual time's scale (µs). */
-  wallTime(): number {
+  private wallTime(): number {
     return this.wallNow() - this.origin;
   }
 
   /** Whether a wake is running timers now. */
   get driving(): boolean {
     return this.running;
-  }
-
-  /** The largest amount virtual time has trailed the wall clock after a wake (µs). */
-  get worstLag_us(): number {
-    return this.worstLag;
   }
 
   /** Stops driving: pending timers never run. */
@@ -100,9 +94,7 @@ export class PacedScheduler extends BaseScheduler {
     if (this.running || this.stopped) return;
     this.running = true;
     try {
-      const target = this.wallTime();
-      await this.virtual.runUntil(Math.max(target, this.virtual.now()));
-      this.worstLag = Math.max(this.worstLag, this.wallTime() - target);
+      await this.virtual.runUntil(Math.max(this.wallTime(), this.virtual.now()));
     } finally {
       this.running = false;
     }
