@@ -12,7 +12,7 @@
  *   sim.stop();
  *
  * Time comes from the scheduler: a VirtualScheduler in Node tests (fully
- * deterministic for a seed), a RealScheduler in the browser.
+ * deterministic for a seed), a PacedScheduler in the browser.
  */
 import type { MaxlConfig } from '../config/types.ts';
 import type { Link } from '../net/link.ts';
