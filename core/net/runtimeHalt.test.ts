@@ -4,20 +4,12 @@
  * Runs the simulated light painter (real firmware in wasm) in virtual time.
  */
 import { describe, expect, it } from 'vitest';
-import { createMAXL } from '../maxl.ts';
-import { VirtualScheduler } from '../time/virtualScheduler.ts';
-import { createSimulatedMachine } from '../sim/machine.ts';
-import { nodeWasmLoader } from '../sim/device/nodeWasmLoader.ts';
+import { startMachine } from '../system/harness.ts';
 import { lightPainter } from '../sim/presets/index.ts';
 
 describe('halt mid-job', () => {
   it('halts every device, and their motors stop', async () => {
-    const scheduler = new VirtualScheduler();
-    const sim = await createSimulatedMachine(lightPainter(), scheduler, { loader: nodeWasmLoader() });
-    const maxl = createMAXL(sim.config, { links: Object.values(sim.links), scheduler });
-    const begun = maxl.begin();
-    await scheduler.advance(2_000_000);
-    await begun;
+    const { scheduler, sim, maxl } = await startMachine(lightPainter());
     for (let i = 1; i <= 50; i++) void maxl.addSegmentToQueue({ endPosition: [i * 2, (i % 2) * 5] });
     await scheduler.advance(300_000);
     expect(maxl.estimate().speed).toBeGreaterThan(0);

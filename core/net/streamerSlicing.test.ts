@@ -4,30 +4,12 @@
  * few ms. Runs the simulated light painter (real firmware in wasm) in virtual time.
  */
 import { describe, expect, it } from 'vitest';
-import { createMAXL } from '../maxl.ts';
-import { VirtualScheduler } from '../time/virtualScheduler.ts';
-import { createSimulatedMachine } from '../sim/machine.ts';
-import { nodeWasmLoader } from '../sim/device/nodeWasmLoader.ts';
+import { startMachine } from '../system/harness.ts';
 import { lightPainter } from '../sim/presets/index.ts';
-
-async function lightPainterSession() {
-  const scheduler = new VirtualScheduler();
-  const sim = await createSimulatedMachine(lightPainter(), scheduler, { loader: nodeWasmLoader() });
-  const maxl = createMAXL(sim.config, { links: Object.values(sim.links), scheduler });
-  const begun = maxl.begin();
-  await scheduler.advance(2_000_000);
-  await begun;
-  return { scheduler, sim, maxl };
-}
 
 describe('streamer slicing of a long move (hold-to-jog)', () => {
   it('keeps the locked path within a few ms of now while a long move runs, so a cancel brakes at once', async () => {
-    const scheduler = new VirtualScheduler();
-    const sim = await createSimulatedMachine(lightPainter(), scheduler, { loader: nodeWasmLoader() });
-    const maxl = createMAXL(sim.config, { links: Object.values(sim.links), scheduler });
-    const begun = maxl.begin();
-    await scheduler.advance(2_000_000);
-    await begun;
+    const { scheduler, sim, maxl } = await startMachine(lightPainter());
     void maxl.addSegmentToQueue({ endPosition: [290, 0], maxVelocity: 50 });
     let worstAhead_us = 0;
     for (let i = 0; i < 20; i++) {
@@ -54,7 +36,7 @@ describe('streamer slicing of a long move (hold-to-jog)', () => {
   });
 
   it('locks the legs of a queued job whole (no slices, no re-sent geometry) when each lasts under wholeSegment_us', async () => {
-    const { scheduler, sim, maxl } = await lightPainterSession();
+    const { scheduler, sim, maxl } = await startMachine(lightPainter());
     await maxl.addSegmentToQueue({ endPosition: [10, 10] });
     await scheduler.advance(1_000_000);
     // A zigzag of 1.8 mm legs at 50 mm/s: each ~44 ms, several leads long.
@@ -83,7 +65,7 @@ describe('streamer slicing of a long move (hold-to-jog)', () => {
   });
 
   it('slices the last queued segment of a live stream, so the next point extends the motion instead of stopping at each point', async () => {
-    const { scheduler, sim, maxl } = await lightPainterSession();
+    const { scheduler, sim, maxl } = await startMachine(lightPainter());
     await maxl.addSegmentToQueue({ endPosition: [10, 10] });
     await scheduler.advance(1_000_000);
     // Points 1.5 mm apart every 30 ms (50 mm/s), each arriving while the one before runs.
