@@ -4,15 +4,11 @@
  * is dropped).
  */
 import { expect, test } from '@playwright/test';
-import { dataNumber, openWorkbench, screenshot, snapshotsPass, waitAtRest } from './support/workbench.ts';
+import { dataNumber, openWorkbench, screenshot, startJob, snapshotsPass, waitAtRest } from './support/workbench.ts';
 
 test('a small job: progress, pause, resume, cancel', async ({ page }) => {
   await openWorkbench(page);
-  await page.getByTestId('job-pattern').selectOption('spiral');
-  await page.getByTestId('job-segments').fill('400');
-  await page.getByTestId('job-size').fill('60');
-  await page.getByTestId('job-speed').fill('40');
-  await page.getByTestId('job-start').click();
+  await startJob(page, { pattern: 'spiral', segments: 400, size: 60, speed: 40 });
 
   const progress = page.getByTestId('job-progress');
   await expect(progress).toHaveAttribute('data-phase', 'running');

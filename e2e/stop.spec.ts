@@ -4,7 +4,7 @@
  * again where it stopped.
  */
 import { expect, test, type Page } from '@playwright/test';
-import { dataNumber, openWorkbench, screenshot, snapshotsPass } from './support/workbench.ts';
+import { dataNumber, openWorkbench, screenshot, startJob, snapshotsPass } from './support/workbench.ts';
 
 async function motorSteps(page: Page): Promise<Record<string, number>> {
   return page.evaluate(() => ({ ...(window as unknown as { maxlWorkbench: { truth: Record<string, number> } }).maxlWorkbench.truth }));
@@ -13,11 +13,7 @@ async function motorSteps(page: Page): Promise<Record<string, number>> {
 for (const how of ['button', 'Escape', 'Control+Shift+E'] as const) {
   test(`STOP (${how}) mid-job halts every device`, async ({ page }) => {
     await openWorkbench(page);
-    await page.getByTestId('job-pattern').selectOption('zigzag');
-    await page.getByTestId('job-segments').fill('300');
-    await page.getByTestId('job-size').fill('60');
-    await page.getByTestId('job-speed').fill('60');
-    await page.getByTestId('job-start').click();
+    await startJob(page, { pattern: 'zigzag', segments: 300, size: 60, speed: 60 });
     await expect.poll(() => dataNumber(page, 'job-progress', 'data-done'), { timeout: 30_000 }).toBeGreaterThan(10);
     const before = await motorSteps(page);
 

@@ -18,6 +18,15 @@ export async function screenshot(page: Page, name: string): Promise<void> {
   await page.screenshot({ path: `${SCREENSHOTS}/${name}.png` });
 }
 
+/** Fills the job panel (pattern, segments, size mm, speed mm/s) and starts the job. */
+export async function startJob(page: Page, job: { pattern: string; segments: number; size: number; speed: number }): Promise<void> {
+  await page.getByTestId('job-pattern').selectOption(job.pattern);
+  await page.getByTestId('job-segments').fill(String(job.segments));
+  await page.getByTestId('job-size').fill(String(job.size));
+  await page.getByTestId('job-speed').fill(String(job.speed));
+  await page.getByTestId('job-start').click();
+}
+
 /** A number a component publishes in its data-value (or data-*) attribute. */
 export async function dataNumber(page: Page, testId: string, attribute = 'data-value'): Promise<number> {
   const v = await page.getByTestId(testId).getAttribute(attribute);
