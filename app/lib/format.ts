@@ -1,11 +1,17 @@
 /** Numbers with units, readable at a glance. */
 
 export function mm(v: number, digits = 3): string {
-  return Number.isFinite(v) ? `${v.toFixed(digits)} mm` : '— mm';
+  return Number.isFinite(v) ? `${fixed(v, digits)} mm` : '— mm';
+}
+
+/** toFixed, without the "-0.000" a value a hair below zero rounds to. */
+function fixed(v: number, digits: number): string {
+  const text = v.toFixed(digits);
+  return Number(text) === 0 ? (0).toFixed(digits) : text;
 }
 
 export function mmPerS(v: number): string {
-  return Number.isFinite(v) ? `${v.toFixed(1)} mm/s` : '— mm/s';
+  return Number.isFinite(v) ? `${fixed(v, 1)} mm/s` : '— mm/s';
 }
 
 /** µs as µs or ms, whichever reads better. */
