@@ -101,7 +101,8 @@ describe('serialport link', () => {
   it('names the port it could not open', async () => {
     await expect(openSerialportLink('/dev/no-such-maxl-board')).rejects.toMatchObject({
       code: 'DEVICE_UNAVAILABLE',
-      message: expect.stringContaining('/dev/no-such-maxl-board'),
+      field: 'path',
+      message: expect.stringMatching(/^path: cannot open serial port \/dev\/no-such-maxl-board: /),
     });
   });
 
