@@ -1,6 +1,7 @@
 // Reader classes: the step generator, position deltas, sensor writers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "support/harness.h"
@@ -96,6 +97,59 @@ TEST(StepGenerator, StepsAreRoundedPositionsAndNeverDrift) {
     }
   }
   EXPECT_EQ(countPins(2, 5).rising >= std::abs(g.steps()), true);
+}
+
+// The step a position rounds to, in exact integer arithmetic from the
+// generator's own step size sQ = s·2^16 (as its constructor rounds it): the
+// upper threshold of step n is U_n = (n·sQ + floor(sQ/2)) / 2^16, and the
+// count is the least n with p < U_n.
+int64_t exactStep(float stepsPerMm, int32_t p) {
+  int64_t sQ = (int64_t)(4294967296.0f / stepsPerMm);
+  int64_t num = (int64_t)p * 65536 - sQ / 2;
+  int64_t q = num >= 0 ? num / sQ : -((-num + sQ - 1) / sQ);  // floor
+  return q + 1;
+}
+
+// Long moves take most of their steps in jumps (stepToward): after every move
+// the count must be exactly the step the position rounds to, for step sizes
+// from a fraction of a unit to many thousands of units, with one STEP pulse
+// per step; reference() must find the same from anywhere.
+TEST(StepGenerator, LongMovesLandOnTheExactStep) {
+  const float stepsPerMm[] = {0.37f, 1.0f, 3.0f, 78.74f, 80.0f, 400.0f, 3200.0f, 65536.0f, 100000.0f};
+  uint32_t rng = 777;
+  for (float spm : stepsPerMm) {
+    host::reset();
+    MAXL_StepGenerator g(2, 5, spm);
+    MAXL_StepGenerator other(3, 6, spm);
+    g.reference(0);
+    int32_t p = 0;
+    int32_t emitted = 0;
+    double unitsPerStep = 65536.0 / spm;
+    for (int i = 0; i < 3000; i++) {
+      rng = rng * 1103515245u + 12345u;
+      // up to ~300 steps either way, and sometimes a fraction of one
+      double span = (i % 5 == 0) ? unitsPerStep : 300.0 * unitsPerStep;
+      double jumpUnits = ((double)(rng >> 8) / (double)(1u << 24) * 2.0 - 1.0) * span;
+      if (std::fabs(p + jumpUnits) > 1.5e9) jumpUnits = -jumpUnits;
+      p += (int32_t)jumpUnits;
+      int32_t before = g.steps();
+      int calls = 0;
+      while (!g.moveTo(p)) ASSERT_LT(++calls, 100000) << spm;
+      emitted += std::abs(g.steps() - before);
+      ASSERT_EQ(g.steps(), exactStep(spm, p)) << "steps/mm " << spm << " move " << i << " to " << p;
+      if (i % 7 == 0) {
+        other.reference(i % 2 ? p : -p);  // from wherever it was
+        ASSERT_EQ(other.steps(), exactStep(spm, i % 2 ? p : -p)) << spm;
+      }
+    }
+    EXPECT_EQ(countPins(2, 5).rising, emitted) << spm;
+    // far away at once, both ways (as far as the count fits in 31 bits)
+    int32_t reach = (int32_t)std::min(1.5e9, 1e9 * unitsPerStep);
+    for (int32_t far : {reach, -reach, 7, -7, 0}) {
+      other.reference(far);
+      EXPECT_EQ(other.steps(), exactStep(spm, far)) << spm << " " << far;
+    }
+  }
 }
 
 TEST(Stepper, FollowsATrajectoryStepForStep) {

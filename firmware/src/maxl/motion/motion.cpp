@@ -19,7 +19,7 @@ inline int32_t wrapAdd(int32_t a, int32_t b) { return (int32_t)((uint32_t)a + (u
 inline float deltaOf(int32_t p0, int32_t p1) { return (float)((int64_t)p1 - (int64_t)p0); }
 }  // namespace
 
-void Motion::reset() {
+__attribute__((noinline)) void Motion::reset() {
   changed();
   queue_.clear(0);
   mode_ = IDLE;

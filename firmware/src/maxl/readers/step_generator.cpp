@@ -21,7 +21,7 @@ MAXL_StepGenerator::MAXL_StepGenerator(uint8_t stepPin, uint8_t dirPin, float st
   int64_t sq = (int64_t)q;
   sWhole_ = (int32_t)(sq >> 16);
   sFrac_ = (uint16_t)(sq & 0xFFFF);
-  reference(0);
+  setSteps(0);
 }
 
 void MAXL_StepGenerator::begin() {
@@ -33,20 +33,11 @@ void MAXL_StepGenerator::begin() {
 }
 
 // n = floor(p/s + 1/2): the n whose thresholds hold p, (n − 1/2)·s <= p <
-// (n + 1/2)·s, found by bisection on "p is below the upper threshold of n"
-// (true from that n on), over the n whose thresholds fit in 32 bits.
+// (n + 1/2)·s. From wherever the count is, with no step limit (a few jumps:
+// see stepToward).
 void MAXL_StepGenerator::reference(int32_t units) {
-  int32_t limit = (int32_t)(0x7FFFFFFFul / (uint32_t)(sWhole_ + 1)) - 1;
-  int32_t lo = -limit, hi = limit;  // answer in [lo, hi]
-  while (lo < hi) {
-    int32_t mid = (int32_t)((uint32_t)lo + (((uint32_t)hi - (uint32_t)lo) >> 1));
-    setSteps(mid);
-    if (units < upCeil())
-      hi = mid;
-    else
-      lo = mid + 1;
-  }
-  setSteps(lo);
+  stepToward(units, 0xFFFFFFFFul, 1);
+  stepToward(units, 0xFFFFFFFFul, -1);
 }
 
 // (n + 1/2)·s in Q16, in 32-bit pieces: with s = S + F/2^16 and
@@ -145,16 +136,48 @@ __attribute__((noinline)) void burstRun(MAXL_StepWindow& out, uint8_t count, boo
 }  // namespace
 #endif
 
-// Moves the thresholds on while `units` is past them, at most `max` steps
-// (the count is not limited by anything else: the caller bounds it).
-uint8_t MAXL_StepGenerator::stepsUpTo(int32_t units, uint8_t max) {
-  uint8_t n = 0;
-  for (int32_t up = upCeil(); n < max && units >= up; up = upCeil(), n++) thresholdUp();
-  return n;
-}
-uint8_t MAXL_StepGenerator::stepsDownTo(int32_t units, uint8_t max) {
-  uint8_t n = 0;
-  for (int32_t down = downCeil(); n < max && units < down; down = downCeil(), n++) thresholdDown();
+// Moves the count (and its thresholds) up while `units` is at or past the
+// next upper threshold (direction +1), or down while it is below the lower
+// one (−1), at most `max` steps; returns how many.
+//
+// Far from the threshold, many steps go in one jump. Going up, with
+// d = units − ceil(U_1) >= 0 and k = floor(d / (S + 1)), the thresholds
+// U_1 .. U_(k+1) are all crossed, because s < S + 1 gives
+//   ceil(U_(k+1)) = ceil(U_1 + k·s) <= ceil(U_1) + ceil(k·s) <= ceil(U_1) + k·(S + 1) <= units.
+// Going down, with d = ceil(D_1) − 1 − units >= 0, likewise
+//   ceil(D_(k+1)) = ceil(D_1 − k·s) >= ceil(D_1) − ceil(k·s) >= units + 1.
+// So k + 1 steps go at once (setSteps keeps the thresholds exact), and the
+// next pass starts from what is left, at most about d/(S·(S + 1)) + 1 steps
+// (one or two at 80 steps/mm). A jump costs a 32-bit division and setSteps
+// (~900 cycles on an AVR), a single step ~75, so under 4·(S + 1) the count
+// moves one threshold at a time.
+uint32_t MAXL_StepGenerator::stepToward(int32_t units, uint32_t max, int8_t direction) {
+  uint32_t n = 0;
+  const uint32_t s1 = (uint32_t)sWhole_ + 1u;
+  while (n < max) {
+    uint32_t d;
+    if (direction > 0) {
+      int32_t up = upCeil();
+      if (units < up) break;
+      d = (uint32_t)units - (uint32_t)up;
+    } else {
+      int32_t down = downCeil();
+      if (units >= down) break;
+      d = (uint32_t)down - 1u - (uint32_t)units;
+    }
+    if ((d >> 2) < s1) {
+      if (direction > 0)
+        thresholdUp();
+      else
+        thresholdDown();
+      n++;
+      continue;
+    }
+    uint32_t k = d / s1 + 1u;  // >= 5
+    if (k > max - n) k = max - n;
+    setSteps(steps_ + (direction > 0 ? (int32_t)k : -(int32_t)k));
+    n += k;
+  }
   return n;
 }
 

@@ -88,8 +88,9 @@ class MAXL_StepGenerator {
   int32_t downCeil() const { return (int32_t)((uint32_t)upWhole_ - (uint32_t)sWhole_ + (upFrac_ > sFrac_)); }
   void thresholdUp();
   void thresholdDown();
-  uint8_t stepsUpTo(int32_t units, uint8_t max);
-  uint8_t stepsDownTo(int32_t units, uint8_t max);
+  uint32_t stepToward(int32_t units, uint32_t max, int8_t direction);
+  uint8_t stepsUpTo(int32_t units, uint8_t max) { return (uint8_t)stepToward(units, max, 1); }
+  uint8_t stepsDownTo(int32_t units, uint8_t max) { return (uint8_t)stepToward(units, max, -1); }
 
 #if MAXL_STEP_TIMER
   // the pins live in the channel (the interrupt's), once
