@@ -49,13 +49,16 @@ struct StepRun {
   }
 };
 
+// One stepper's steps: the run going out (`current_`, first in the object,
+// where the AVR vector's fast path finds it) and the runs queued behind it,
+// MAXL_STEP_RING in all.
 class StepChannel {
  public:
   static const uint8_t BACKWARD = 0x80;
   static const uint8_t MAX_RUN = 0x7F;
   static const uint8_t UNKNOWN = 0x01;  // DIR not written yet
 
-  StepChannel() : invert(false), head_(0), count_(0), backward_(UNKNOWN) {}
+  StepChannel() : stepPin(), dirPin(), invert(false), head_(0), count_(0), backward_(UNKNOWN) { current_.count = 0; }
 
   // Room for another run (the loop's side; the interrupt only frees room).
   uint8_t free() const { return (uint8_t)(MAXL_STEP_RING - count_); }
@@ -78,27 +81,35 @@ class StepChannel {
   // The count of the next step, if there is one.
   bool nextDue(uint16_t& at) const {
     if (!count_) return false;
-    at = ring_[head_].tick();
+    at = current_.tick();
     return true;
   }
 
-  // The stepper's pins (MAXL_StepGenerator keeps them here).
+  // The run going out (count_ >= 1), then the stepper's pins (MAXL_StepGenerator
+  // keeps them here). The AVR vector reads these three at fixed offsets.
+  StepRun current_;
   maxl_fw::hal::OutputPin stepPin;
   maxl_fw::hal::OutputPin dirPin;
   bool invert;
 
  private:
   int16_t dropAll();
-  uint8_t index(uint8_t i) const {
-    uint8_t j = (uint8_t)(head_ + i);
-    return j >= MAXL_STEP_RING ? (uint8_t)(j - MAXL_STEP_RING) : j;
+  // The i-th run (0 = current_), i < count_.
+  StepRun& run(uint8_t i) {
+    if (i == 0) return current_;
+    uint8_t j = (uint8_t)(head_ + i - 1);
+    return queued_[j >= QUEUED ? (uint8_t)(j - QUEUED) : j];
   }
+  const StepRun& run(uint8_t i) const { return const_cast<StepChannel*>(this)->run(i); }
+  // current_ is spent: the next queued run takes its place (or none is left).
+  inline void promote();
   void setDirection(uint8_t backward);
 
-  StepRun ring_[MAXL_STEP_RING];
+  static const uint8_t QUEUED = MAXL_STEP_RING - 1;
+  StepRun queued_[QUEUED];  // behind current_, from head_
   volatile uint8_t head_;
-  volatile uint8_t count_;
-  uint8_t backward_;  // the DIR pin's state: BACKWARD, 0, or UNKNOWN
+  volatile uint8_t count_;  // runs held: current_ (when >= 1) and count_ − 1 queued
+  uint8_t backward_;        // the DIR pin's state: BACKWARD, 0, or UNKNOWN
 };
 
 // The timer and the channels it serves.
