@@ -17,8 +17,11 @@
 // never more than a few ms behind), so 16-bit signed differences order them.
 //
 // The interrupt's share of a step: pin high, one 32-bit add, a new compare
-// (while the pulse is high), pin low (after MAXL_STEP_PULSE_TICKS). Runs are
-// consumed in place: the head of the ring is the run going out.
+// (while the pulse is high), pin low (after MAXL_STEP_PULSE_TICKS). The run
+// going out is the channel's `current_`, consumed in place; when it is spent
+// the next queued run is copied in. On AVR the vector has an assembly fast
+// path for the common case at high rates (one channel, a step inside its
+// run: step_timer.cpp); everything else goes through serviceAll().
 #ifndef MAXL_READERS_STEP_TIMER_H
 #define MAXL_READERS_STEP_TIMER_H
 
