@@ -202,3 +202,149 @@ TEST(Status, ReportsStateDepthAndSticksFlags) {
   EXPECT_EQ(s.flags, 0);
   EXPECT_EQ(p[1].type, type::ACK);
 }
+
+// A TIMING without start continues the timing before it. Once that timing has
+// run out (the segments ran and retired, or the device braked to rest along its
+// geometry for lack of timing), the start is in the past: LATE_SEGMENT, as for
+// any late start, not MALFORMED. Only with no timing at all in the session (or
+// since a HALT mode 0) is there nothing to continue.
+namespace {
+int32_t mm(double v) { return (int32_t)std::llround(v * 65536.0); }
+
+msg::Status statusNow(Harness& h) {
+  h.take();
+  h.send(h.author.statusRequest());
+  msg::Status s{};
+  bool found = false;
+  for (auto& p : h.take())
+    if (p.type == type::STATUS) found = msg::parse(p.payload.data(), (uint8_t)p.payload.size(), s);
+  EXPECT_TRUE(found);
+  return s;
+}
+
+// The refused continuation changed nothing: segment `id` is the first without
+// timing, the device holds at `here`, reports late, and a TIMING with a start
+// ahead is accepted and runs to `to`.
+void lateThenRestart(Harness& h, uint16_t id, int32_t here, int32_t to, uint8_t restState) {
+  Answer a = h.exchange(h.author.timing(id, 1000.0f, nullptr, {trapezoid(10, 0, 100, 0, 1000)}));
+  EXPECT_EQ(a.reason, nack::LATE_SEGMENT);
+  EXPECT_EQ(a.detail, id);
+  EXPECT_EQ(h.device->motion().queue().timed(), 0);
+  EXPECT_EQ(h.device->motion().queue().headId(), id);
+  EXPECT_TRUE(h.device->statusFlags() & status_flag::LATE);
+  msg::Status s = statusNow(h);
+  EXPECT_EQ(s.state, restState);
+  EXPECT_TRUE(s.flags & status_flag::LATE);
+  for (int k = 0; k < 5; k++) {
+    h.loopAt(h.now() + 20000);
+    EXPECT_EQ(h.device->positionUnits(0), here);  // nothing was applied
+  }
+  uint32_t start = h.now() + 50000;
+  EXPECT_EQ(h.exchange(h.author.timing(id, 1000.0f, &start, {trapezoid(10, 0, 100, 0, 1000)})).reason, 0);
+  EXPECT_EQ(h.device->motion().queue().timed(), 1);
+  EXPECT_EQ(h.device->state(), state::RUNNING);
+  h.loopAt(start + 100000);
+  EXPECT_NEAR(h.device->positionUnits(0), here + (to - here) / 2, 16);
+  h.loopAt(start + 400000);
+  EXPECT_EQ(h.device->positionUnits(0), to);
+}
+}  // namespace
+
+TEST(Timing, ContinuationAfterTheTimedSegmentsRetiredIsLate) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  h.at(50000);
+  // Two timed segments ending at rest, then provisional geometry.
+  EXPECT_EQ(h.exchange(h.author.geometry(0, &ORIGIN1, {{10.0f, {mm(10)}}, {10.0f, {mm(20)}}, {10.0f, {mm(30)}}, {10.0f, {mm(40)}}}, 1)).reason, 0);
+  uint32_t start = 100000;
+  msg::TimingSegment rest = trapezoid(10, 0, 100, 0, 1000);
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {rest})).reason, 0);
+  EXPECT_EQ(h.exchange(h.author.timing(1, 1000.0f, nullptr, {rest})).reason, 0);
+  for (uint32_t t = 100000; t <= 600000; t += 1000) h.loopAt(t);
+  EXPECT_EQ(h.device->positionUnits(0), mm(20));
+  EXPECT_EQ(h.device->state(), state::IDLE);
+  EXPECT_EQ(h.device->motion().queue().count(), 2);  // 2 and 3, provisional
+  EXPECT_EQ(h.device->statusFlags(), 0);
+  // The continuation of segment 1 (ended at 500 000) arrives late.
+  lateThenRestart(h, 2, mm(20), mm(30), state::IDLE);
+  // And again after 40 minutes at rest (past the half-wrap of the µs clock: the
+  // end of the last timing must not come to look like the future).
+  h.loopAt(h.now() + 2400000000u);
+  EXPECT_EQ(h.device->state(), state::IDLE);
+  lateThenRestart(h, 3, mm(30), mm(40), state::IDLE);
+}
+
+TEST(Timing, ContinuationAfterBrakingToRestIsLate) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  // 10 mm at 100 mm/s, then 2 mm of provisional geometry: starved at 200 000, the
+  // device brakes (5 mm needed at 1000 mm/s²) and stops at the end of the geometry.
+  EXPECT_EQ(h.exchange(h.author.geometry(0, &ORIGIN1, {{10.0f, {mm(10)}}, {2.0f, {mm(12)}}}, 1)).reason, 0);
+  uint32_t start = 100000;
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {cruise(100000)})).reason, 0);
+  for (uint32_t t = 100000; t <= 400000; t += 1000) h.loopAt(t);
+  EXPECT_EQ(h.device->state(), state::STOPPED);
+  EXPECT_EQ(h.device->positionUnits(0), mm(12));
+  EXPECT_EQ(h.device->motion().queue().count(), 0);
+  // The queue emptied: geometry for the next segment continues the ids, and its
+  // timing, contiguous with segment 0's, is late.
+  EXPECT_EQ(h.exchange(h.author.geometry(2, nullptr, {{10.0f, {mm(22)}}}, 1)).reason, 0);
+  lateThenRestart(h, 2, mm(12), mm(22), state::STOPPED);
+  EXPECT_TRUE(h.device->statusFlags() & status_flag::STARVED);
+}
+
+TEST(Timing, ContinuationAfterAHaltBrakeIsLate) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  // The session's first segment brakes from a HALT mode 1 and never reaches its end.
+  EXPECT_EQ(h.exchange(h.author.geometry(0, &ORIGIN1, {{10.0f, {mm(10)}}}, 1)).reason, 0);
+  uint32_t start = 100000;
+  EXPECT_EQ(h.exchange(h.author.timing(0, 2000.0f, &start, {cruise(100000)})).reason, 0);
+  h.loopAt(150000);
+  EXPECT_EQ(h.exchange(h.author.halt(HALT_BRAKE_AT, 180000)).reason, 0);  // at 8 mm, 2.5 mm to stop
+  for (uint32_t t = 150000; t <= 400000; t += 1000) h.loopAt(t);
+  EXPECT_EQ(h.device->state(), state::STOPPED);
+  EXPECT_EQ(h.device->positionUnits(0), mm(10));
+  EXPECT_EQ(h.exchange(h.author.geometry(1, nullptr, {{10.0f, {mm(20)}}}, 1)).reason, 0);
+  lateThenRestart(h, 1, mm(10), mm(20), state::STOPPED);
+}
+
+TEST(Timing, ContinuationOfNothingIsMalformed) {
+  MAXL_TrackPositionLinear x("x", position);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}});
+  h.at(50000);
+  EXPECT_EQ(h.exchange(h.author.geometry(0, &ORIGIN1, {{10.0f, {mm(10)}}, {10.0f, {mm(20)}}}, 1)).reason, 0);
+  // No timing yet in the session.
+  Answer a = h.exchange(h.author.timing(0, 1000.0f, nullptr, {cruise(100000)}));
+  EXPECT_EQ(a.reason, nack::MALFORMED);
+  EXPECT_EQ(a.detail, type::TIMING);
+  EXPECT_FALSE(h.device->statusFlags() & status_flag::LATE);
+  uint32_t start = 100000;
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, &start, {trapezoid(10, 0, 100, 0, 1000)})).reason, 0);
+  // Overlapping the timing queued is malformed too.
+  uint32_t early = 250000;
+  EXPECT_EQ(h.exchange(h.author.timing(1, 1000.0f, &early, {cruise(100000)})).reason, nack::MALFORMED);
+  for (uint32_t t = 100000; t <= 400000; t += 1000) h.loopAt(t);
+  EXPECT_EQ(h.device->positionUnits(0), mm(10));
+  // After HALT mode 0 the timing before is forgotten: nothing to continue again.
+  EXPECT_EQ(h.exchange(h.author.halt(HALT_NOW, 0)).reason, 0);
+  std::vector<int32_t> here = {mm(10)};
+  EXPECT_EQ(h.exchange(h.author.geometry(7, &here, {{10.0f, {mm(20)}}}, 1)).reason, 0);
+  a = h.exchange(h.author.timing(7, 1000.0f, nullptr, {cruise(100000)}));
+  EXPECT_EQ(a.reason, nack::MALFORMED);
+  EXPECT_EQ(a.detail, type::TIMING);
+  EXPECT_FALSE(h.device->statusFlags() & status_flag::LATE);
+  EXPECT_EQ(h.device->state(), state::HALTED);
+  start = h.now() + 50000;
+  EXPECT_EQ(h.exchange(h.author.timing(7, 1000.0f, &start, {trapezoid(10, 0, 100, 0, 1000)})).reason, 0);
+  h.loopAt(start + 400000);
+  EXPECT_EQ(h.device->positionUnits(0), mm(20));
+  // A new session forgets it too.
+  h.open({{0, kind::POSITION, 0}});
+  EXPECT_EQ(h.exchange(h.author.geometry(0, &here, {{10.0f, {mm(20)}}}, 1)).reason, 0);
+  EXPECT_EQ(h.exchange(h.author.timing(0, 1000.0f, nullptr, {cruise(100000)})).reason, nack::MALFORMED);
+}

@@ -120,20 +120,20 @@ MAXL_Device::Answer MAXL_Device::onTiming(const uint8_t* p, uint8_t n) {
   // Timing goes to the first segments without it, and only to queued ones.
   if (t.firstId != (uint16_t)(q.headId() + first)) return nack(nack::UNKNOWN_SEGMENT, t.firstId);
   if ((uint16_t)first + t.count > q.count()) return nack(nack::UNKNOWN_SEGMENT, q.nextId());
-  // The device is braking along (or stopped inside) that segment: too late.
-  if (first == 0 && motion_.headStarted()) {
+  uint32_t start = t.start;
+  if (first > 0) {
+    // After the timed segments queued: contiguous with them, or not overlapping.
+    uint32_t previousEnd = q.at((uint8_t)(first - 1)).end();
+    if (!t.hasStart()) start = previousEnd;
+    if (timeBefore(start, previousEnd)) return nack(nack::MALFORMED, type::TIMING);  // overlaps
+  } else if (!t.hasStart() || motion_.headStarted()) {
+    // No timed segment left to continue. Without timing in the session (or
+    // since HALT 0) there is nothing to continue; otherwise that timing is over
+    // (run, braked along, or dropped), so the start would be in the past. And
+    // the device braking along (or stopped inside) that segment: too late too.
+    if (!motion_.timingGiven()) return nack(nack::MALFORMED, type::TIMING);  // contiguous with nothing
     flags_ |= status_flag::LATE;
     return nack(nack::LATE_SEGMENT, t.firstId);
-  }
-  uint32_t previousEnd;
-  bool hasPrevious = motion_.timingEnd(previousEnd);
-  uint32_t start;
-  if (t.hasStart()) {
-    start = t.start;
-    if (hasPrevious && timeBefore(start, previousEnd)) return nack(nack::MALFORMED, type::TIMING);  // overlaps
-  } else {
-    if (!hasPrevious) return nack(nack::MALFORMED, type::TIMING);  // contiguous with nothing
-    start = previousEnd;
   }
   // Write the timing into the (still provisional) segments; it only counts
   // once markTimed() says so, so a refusal half-way leaves nothing applied.
@@ -159,7 +159,10 @@ MAXL_Device::Answer MAXL_Device::onTiming(const uint8_t* p, uint8_t n) {
     if (late < 0 && timeBefore(start, now_)) late = k;
     start += s.duration();
   }
-  if (late != 0) motion_.setStopDecel(t.stopDecel);
+  if (late != 0) {
+    motion_.setStopDecel(t.stopDecel);
+    motion_.timingAdded();
+  }
   if (late >= 0) {
     q.markTimed((uint8_t)(first + late));
     flags_ |= status_flag::LATE;

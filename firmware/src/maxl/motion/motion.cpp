@@ -29,14 +29,13 @@ __attribute__((noinline)) void Motion::reset() {
   headStarted_ = false;
   starved_ = false;
   haltPending_ = false;
-  hasRetiredEnd_ = false;
+  timingGiven_ = false;
   floatValid_ = false;
   brakeStops_ = false;
   haltSegment_ = 0;
   lastId_ = 0;
   lastSigma_ = 0.0f;
   haltAt_ = 0;
-  retiredEnd_ = 0;
   chunkStart_ = phaseStart_ = phaseEnd_ = 0;
   stopDecel_ = 0.0f;
   length_ = 0.0f;
@@ -67,15 +66,6 @@ void Motion::setBase(const int32_t* p0, uint8_t slots) {
     if (!moving()) pos_[i] = p0[i];
   }
   knownSlots_ = slots;
-}
-
-bool Motion::timingEnd(uint32_t& end) const {
-  if (queue_.timed() > 0) {
-    end = queue_.at((uint8_t)(queue_.timed() - 1)).end();
-    return true;
-  }
-  end = retiredEnd_;
-  return hasRetiredEnd_;
 }
 
 // ------------------------------------------------------------------ tick
@@ -218,8 +208,6 @@ void Motion::finishSegment(uint32_t t) {
   for (uint8_t i = 0; i < activeSlots_; i++) pos_[i] = base_[i] = s.p1[i];
   bool moreTiming = queue_.timed() > 1;
   float exitSpeed = moreTiming ? 0.0f : s.length * exitNu(s);
-  retiredEnd_ = t;
-  hasRetiredEnd_ = true;
   lastId_ = queue_.headId();
   lastSigma_ = 1.0f;
   queue_.popHead();
@@ -431,7 +419,7 @@ void Motion::haltNow(uint32_t now) {
   lastSigma_ = sigma;
   headStarted_ = false;
   haltPending_ = false;
-  hasRetiredEnd_ = false;
+  timingGiven_ = false;
 }
 
 bool Motion::haltBrakeAt(uint32_t now, uint32_t at) {

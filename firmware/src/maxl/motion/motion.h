@@ -91,13 +91,15 @@ class Motion {
   int32_t startOf(uint8_t i, uint8_t slot) const { return i == 0 ? base_[slot] : queue_.at((uint8_t)(i - 1)).p1[slot]; }
   // Sets the queue's starting position (GEOMETRY p0 on an empty queue).
   void setBase(const int32_t* p0, uint8_t slots);
-  // End of the last timing the device has or had (for TIMING without start).
-  bool timingEnd(uint32_t& end) const;
+  // Whether any TIMING was accepted in the session since it began or since
+  // HALT mode 0: a TIMING without start with no timed segment queued then
+  // continues timing that is over (late), not nothing (malformed).
+  bool timingGiven() const { return timingGiven_; }
 
   float stopDecel() const { return stopDecel_; }
   void setStopDecel(float d) { stopDecel_ = d; }
   // Called when the queue's timed prefix grew (the handler marked it).
-  void timingAdded() {}
+  void timingAdded() { timingGiven_ = true; }
 
   // True when the current phase (or brake piece) began exactly at t.
   bool phaseStartedAt(uint32_t t) const { return moving() && phaseStart_ == t; }
@@ -161,7 +163,7 @@ class Motion {
   bool headStarted_ : 1;   // the head has been run or braked along
   bool starved_ : 1;
   bool haltPending_ : 1;   // HALT mode 1 with `at` still ahead
-  bool hasRetiredEnd_ : 1;
+  bool timingGiven_ : 1;   // see timingGiven()
   bool floatValid_ : 1;    // phaseSigma_/phaseNu_ are those of the current phase
   bool brakeStops_ : 1;
   uint8_t epoch_;
@@ -169,7 +171,6 @@ class Motion {
   uint16_t lastId_;        // where the device is when not moving
   float lastSigma_;
   uint32_t haltAt_;
-  uint32_t retiredEnd_;
   uint32_t chunkStart_;
   uint32_t phaseStart_;
   uint32_t phaseEnd_;
