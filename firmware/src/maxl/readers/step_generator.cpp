@@ -60,13 +60,13 @@ inline __attribute__((always_inline)) void MAXL_StepGenerator::thresholdUp() {
   uint16_t frac = (uint16_t)(upFrac_ + sFrac_);
   upWhole_ = (int32_t)((uint32_t)upWhole_ + (uint32_t)sWhole_ + (frac < upFrac_ ? 1u : 0u));
   upFrac_ = frac;
-  steps_++;
+  steps_ = (int32_t)((uint32_t)steps_ + 1u);
 }
 inline __attribute__((always_inline)) void MAXL_StepGenerator::thresholdDown() {
   uint16_t frac = (uint16_t)(upFrac_ - sFrac_);
   upWhole_ = (int32_t)((uint32_t)upWhole_ - (uint32_t)sWhole_ - (upFrac_ < sFrac_ ? 1u : 0u));
   upFrac_ = frac;
-  steps_--;
+  steps_ = (int32_t)((uint32_t)steps_ - 1u);
 }
 
 // One pulse per step, from loop() (the thresholds have moved already).
@@ -175,7 +175,9 @@ uint32_t MAXL_StepGenerator::stepToward(int32_t units, uint32_t max, int8_t dire
     }
     uint32_t k = d / s1 + 1u;  // >= 5
     if (k > max - n) k = max - n;
-    setSteps(steps_ + (direction > 0 ? (int32_t)k : -(int32_t)k));
+    // in u32: a count past ±2^31 (a position the step size cannot count to)
+    // wraps like the thresholds do, without undefined behaviour
+    setSteps((int32_t)(direction > 0 ? (uint32_t)steps_ + k : (uint32_t)steps_ - k));
     n += k;
   }
   return n;
