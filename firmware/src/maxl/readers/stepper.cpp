@@ -46,7 +46,7 @@ bool MAXL_Stepper::useStepTimer(bool on) {
 
 int32_t MAXL_Stepper::steps() const {
 #if MAXL_STEP_TIMER
-  if (timed_) return generator_.steps() - generator_.channel().pending();
+  if (timed_) return (int32_t)((uint32_t)generator_.steps() - (uint32_t)(int32_t)generator_.channel().pending());
 #endif
   return generator_.steps();
 }
@@ -91,7 +91,7 @@ void MAXL_Stepper::stopTimed() {
   int16_t dropped = generator_.channel().clear();
   StepTimer::kick();
   hal::unlockInterrupts(sreg);
-  generator_.setSteps(generator_.steps() - dropped);
+  generator_.setSteps((int32_t)((uint32_t)generator_.steps() - (uint32_t)(int32_t)dropped));
   synced_ = false;
 }
 
@@ -107,7 +107,7 @@ __attribute__((noinline)) void MAXL_Stepper::resync(const Motion& motion, uint32
       uint8_t sreg = hal::lockInterrupts();
       int16_t dropped = generator_.channel().dropFrom(StepTimer::ticksAt(from));
       hal::unlockInterrupts(sreg);
-      generator_.setSteps(generator_.steps() - dropped);
+      generator_.setSteps((int32_t)((uint32_t)generator_.steps() - (uint32_t)(int32_t)dropped));
       planned_ = from;
     }
   } else {
@@ -172,7 +172,7 @@ __attribute__((noinline)) void MAXL_Stepper::plan(MAXL_Device& device) {
         uint32_t grid = (planned_ & ~(uint32_t)(w - 1)) + w;  // next multiple of w
         if (timeBefore(grid, t1)) t1 = grid;
         p1 = motion.lookAt(look_, slot, t1);
-        if (w <= MAXL_STEP_WINDOW_MIN_US || !tooManySteps(p1 - plannedUnits_)) break;
+        if (w <= MAXL_STEP_WINDOW_MIN_US || !tooManySteps((int32_t)((uint32_t)p1 - (uint32_t)plannedUnits_))) break;
         look_ = before;
         w >>= 1;
       }
