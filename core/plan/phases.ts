@@ -110,24 +110,40 @@ export function trapezoidTiming(length: number, entry2: number, exit2: number, c
   const dDec = (vp2 - exit2) / (2 * accel);
   const dCruise = Math.max(0, length - dAcc - dDec);
 
-  const timing: Timing = [];
+  const tAcc = (vp - ve) / accel;
+  const cruises = dCruise > 0 && vp > 0;
+  const tDec = (vp - vx) / accel;
+  const count = (tAcc > 0 ? 1 : 0) + (cruises ? 1 : 0) + (tDec > 0 ? 1 : 0);
+  // Only a segment of zero length and zero speed has no phase; the queue skips those.
+  if (count === 0) return [0, 0, 0, ve, 0, 0];
+  // Sized once rather than grown by push, which over-allocates (25 slots for 6) and would, were V8
+  // to pretenure this allocation site, put young storage behind an old array (see ValidatedMove).
+  const timing: Timing = new Array<number>(count * PHASE_STRIDE);
+  let o = 0;
   let t = 0;
   let s = 0;
-  const tAcc = (vp - ve) / accel;
   if (tAcc > 0) {
-    timing.push(t, tAcc, s, ve, accel, 0);
+    o = writePhase(timing, o, t, tAcc, s, ve, accel);
     t += tAcc;
     s += dAcc;
   }
-  if (dCruise > 0 && vp > 0) {
+  if (cruises) {
     const tCruise = dCruise / vp;
-    timing.push(t, tCruise, s, vp, 0, 0);
+    o = writePhase(timing, o, t, tCruise, s, vp, 0);
     t += tCruise;
     s += dCruise;
   }
-  const tDec = (vp - vx) / accel;
-  if (tDec > 0) timing.push(t, tDec, s, vp, -accel, 0);
-  // Only a segment of zero length and zero speed gets here with nothing; the queue skips those.
-  if (timing.length === 0) timing.push(0, 0, 0, ve, 0, 0);
+  if (tDec > 0) writePhase(timing, o, t, tDec, s, vp, -accel);
   return timing;
+}
+
+/** Writes a constant-acceleration phase at offset o; returns the offset after it. */
+function writePhase(timing: Timing, o: number, t0: number, duration: number, s0: number, v0: number, a0: number): number {
+  timing[o] = t0;
+  timing[o + 1] = duration;
+  timing[o + 2] = s0;
+  timing[o + 3] = v0;
+  timing[o + 4] = a0;
+  timing[o + 5] = 0;
+  return o + PHASE_STRIDE;
 }

@@ -20,11 +20,26 @@ export interface Move {
   eventChannels?: MoveEvents;
 }
 
-/** A move that passed validation, not yet turned into segments. */
-export interface ValidatedMove {
-  end: number[];
-  maxVelocity: number;
-  events: ResolvedEventSpec[];
+/**
+ * A move that passed validation, not yet turned into segments. Its segments keep it
+ * (as their `source`) for as long as they are queued.
+ *
+ * A class rather than an object literal, like every object that lives with a queued
+ * segment: V8 may "pretenure" an object literal whose objects all survive a young
+ * collection (as they do while the queue fills), and then creates them in the old
+ * generation, where each keeps the young objects it points at alive until the next
+ * full collection. Class instances carry no such allocation site.
+ */
+export class ValidatedMove {
+  readonly end: number[];
+  readonly maxVelocity: number;
+  readonly events: ResolvedEventSpec[];
+
+  constructor(end: number[], maxVelocity: number, events: ResolvedEventSpec[]) {
+    this.end = end;
+    this.maxVelocity = maxVelocity;
+    this.events = events;
+  }
 }
 
 /** The fractions of a move that is not subdivided. */
@@ -88,7 +103,7 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
     maxVelocity = finite('maxVelocity', move.maxVelocity);
     if (maxVelocity <= 0) throw new MaxlError('MOVE_INVALID', 'must be positive (mm/s)', 'maxVelocity');
   }
-  return { end, maxVelocity, events: resolveMoveEvents(move.eventChannels, config.eventChannels) };
+  return new ValidatedMove(end, maxVelocity, resolveMoveEvents(move.eventChannels, config.eventChannels));
 }
 
 export function distance(a: readonly number[], b: readonly number[]): number {
