@@ -62,6 +62,7 @@
  * known now (still stoppable, since e ≤ b), and that speed becomes the fixed entry
  * of the new front.
  */
+import { shouldDropSpent } from './spentPrefix.ts';
 
 export interface PlanBlock {
   /** mm */
@@ -316,11 +317,11 @@ export class LookaheadPlanner<B extends PlanBlock> {
   }
 
   private compact(): void {
-    if (this.head > 1024 && this.head * 2 > this.blocks.length) {
+    if (shouldDropSpent(this.head, this.blocks.length)) {
       this.blocks = this.blocks.slice(this.head);
       this.head = 0;
     }
-    if (this.candHead > 1024 && this.candHead * 2 > this.candJunction.length) {
+    if (shouldDropSpent(this.candHead, this.candJunction.length)) {
       this.candJunction = this.candJunction.slice(this.candHead);
       this.candValue = this.candValue.slice(this.candHead);
       this.candHead = 0;

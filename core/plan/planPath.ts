@@ -92,7 +92,7 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
   let tail: PathTail = { position: [...start], unit: null, cruise2: 0 };
   let skipped = 0;
   validated.forEach((move, moveId) => {
-    const segs = segmentsForMove(config, move, tail, { nextSegmentId: segments.length, moveId });
+    const segs = segmentsForMove(config, move, tail, segments.length, moveId);
     if (segs.length === 0) skipped++;
     for (const seg of segs) {
       planner.append(seg);

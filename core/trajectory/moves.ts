@@ -130,13 +130,15 @@ export interface PathTail {
 
 /**
  * Splits a validated move into segments (one, unless a nonlinear transform needs
- * more), each with its planner inputs. Returns [] for a zero-length move.
+ * more), each with its planner inputs, numbered from firstId. Returns [] for a
+ * zero-length move.
  */
 export function segmentsForMove(
   config: ResolvedConfig,
   move: ValidatedMove,
   tail: PathTail,
-  ids: { nextSegmentId: number; moveId: number },
+  firstId: number,
+  moveId: number,
 ): Segment[] {
   const p0 = tail.position;
   const total = distance(p0, move.end);
@@ -150,7 +152,7 @@ export function segmentsForMove(
 
   // Pieces of the move: one, unless a nonlinear transform needs more.
   const fractions = hasNonlinearTransform(config) ? subdivisionFractions(config.transforms, p0, move.end) : WHOLE;
-  const segments: Segment[] = [];
+  const segments = new Array<Segment>(fractions.length - 1);
   let prevUnit = tail.unit;
   let prevCruise2 = tail.cruise2;
   let start = p0;
@@ -169,13 +171,13 @@ export function segmentsForMove(
       rate = new Array<number>(a0.length);
       for (let j = 0; j < a0.length; j++) rate[j] = (a1[j] - a0[j]) / length;
     }
-    const seg = new Segment(ids.nextSegmentId + k, ids.moveId, start, end, unit, length, fractions[k] * total, move);
+    const seg = new Segment(firstId + k, moveId, start, end, unit, length, fractions[k] * total, move);
     seg.actuatorStart = a0;
     seg.actuatorRate = rate;
     seg.accel = accel;
     seg.cruise2 = cruise2;
     seg.maxEntry2 = maxEntry2;
-    segments.push(seg);
+    segments[k] = seg;
     prevUnit = unit;
     prevCruise2 = cruise2;
     start = end;

@@ -17,6 +17,7 @@
 import { MaxlError } from '../errors.ts';
 import type { ResolvedConfig } from '../config/types.ts';
 import { LookaheadPlanner } from '../plan/lookahead.ts';
+import { shouldDropSpent } from '../plan/spentPrefix.ts';
 import { buildEventTracks, type EventTrack } from './events.ts';
 import { segmentsForMove, validateMove, ZERO_LENGTH_MM, type Move, type PathTail, type ValidatedMove } from './moves.ts';
 import { Segment, type SegmentState } from './segment.ts';
@@ -206,7 +207,7 @@ export class TrajectoryQueue {
 
   /** Turns a move into segments at the tail and plans them; `added` collects them for an edit's report. */
   private enqueue(move: ValidatedMove, moveId: number, added: Segment[] | null): MoveReceipt {
-    const segments = segmentsForMove(this.config, move, this.tail, { nextSegmentId: this.nextSegmentId, moveId });
+    const segments = segmentsForMove(this.config, move, this.tail, this.nextSegmentId, moveId);
     if (segments.length === 0) {
       this.skippedZeroLength++;
       return { moveId, segmentIds: [], skipped: true };
@@ -510,15 +511,16 @@ export class TrajectoryQueue {
 
   /** Moves transmitted segments that ended at or before `now_us` to historical, and returns them. */
   retireUntil(now_us: number): Segment[] {
-    const retired: Segment[] = [];
+    const first = this.head;
     while (this.head < this.live.length) {
       const seg = this.live[this.head];
       if (seg.state !== 'transmitted' || seg.endTime_us > now_us) break;
       seg.state = 'historical';
-      retired.push(seg);
       this.head++;
     }
-    if (this.head > 1024 && this.head * 2 > this.live.length) {
+    const retired = new Array<Segment>(this.head - first);
+    for (let i = 0; i < retired.length; i++) retired[i] = this.live[first + i];
+    if (shouldDropSpent(this.head, this.live.length)) {
       this.live = this.live.slice(this.head);
       this.head = 0;
     }
@@ -539,8 +541,12 @@ export class TrajectoryQueue {
   private flushPlanned(): void {
     const planned = this.newlyPlanned;
     if (planned.length === 0) return;
+    if (this.listeners.length === 0) {
+      // Nobody will hold it: empty it for the next call (pop is cheaper than setting length).
+      while (planned.length > 0) planned.pop();
+      return;
+    }
     this.newlyPlanned = [];
-    if (this.listeners.length === 0) return;
     // A segment planned during this call may already have been transmitted by it.
     let still = planned;
     for (const s of planned) {
