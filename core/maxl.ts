@@ -10,6 +10,7 @@ import type { Move, ValidatedMove } from './trajectory/moves.ts';
 import { TrajectoryQueue, type MoveReceipt } from './trajectory/queue.ts';
 import { TrajectoryHistory } from './trajectory/history.ts';
 import { Runtime, type DeviceReport, type RuntimeEvent } from './net/runtime.ts';
+import type { FeedLimit } from './net/linkFeedLimit.ts';
 import type { Link } from './net/link.ts';
 import type { DeviceInfo, SessionOptions } from './net/session.ts';
 import type { StreamerOptions } from './net/streamer.ts';
@@ -33,6 +34,11 @@ export interface MaxlOptions {
   syncBeforeStart_us?: number;
   /** How many transmitted segments the as-planned history keeps for sampling the past. Default 100 000. */
   historyLimit?: number;
+  /**
+   * Slow the motion where a link could not carry its segments in time (net/linkFeedLimit.ts).
+   * Default true; off, such a job starves its device.
+   */
+  linkFeedLimit?: boolean;
 }
 
 export class Maxl {
@@ -122,6 +128,7 @@ export class Maxl {
       session: o.session,
       streamer: o.streamer,
       syncBeforeStart_us: o.syncBeforeStart_us,
+      linkFeedLimit: o.linkFeedLimit,
     });
     for (const l of this.pendingListeners) this.runtime.on(l);
     return this.runtime.begin();
@@ -144,6 +151,15 @@ export class Maxl {
 
   devices(): DeviceReport[] {
     return this.runtime?.devices() ?? [];
+  }
+
+  /**
+   * The floor the links put on every segment's duration (null before begin()): a
+   * segment of length L then runs at most L / floor fast. `device` is the one whose
+   * link sets it; minSegment_us 0 means no link limits the motion.
+   */
+  get feedLimit(): Readonly<FeedLimit> | null {
+    return this.runtime?.feedLimit ?? null;
   }
 
   /** Brings the machine to rest on the path as fast as its limits allow, and holds. */

@@ -7,7 +7,7 @@
  */
 /// <reference types="w3c-web-serial" />
 
-import { MAXL_DEFAULT_BAUD } from '../../core/net/link.ts';
+import { MAXL_DEFAULT_BAUD, uartBytesPerSecond } from '../../core/net/link.ts';
 
 /** What navigator.serial offers, and what the polyfill offers in its place. */
 export interface SerialApi {
@@ -59,6 +59,8 @@ export interface OpenedPort {
   label: string;
   readable: ReadableStream<Uint8Array>;
   writable: WritableStream<Uint8Array>;
+  /** What reaches the board: its UART at the baud the port runs at (native-USB boards take more). */
+  bytesPerSecond: number;
 }
 
 /** Opens a port (if it is not open yet) and returns its streams, ready to transfer to the worker. */
@@ -66,7 +68,7 @@ export async function openPort(port: SerialPortLike): Promise<OpenedPort> {
   if (!port.readable || !port.writable) await port.open({ baudRate: MAXL_DEFAULT_BAUD });
   const { readable, writable } = port;
   if (!readable || !writable) throw new Error(`${portLabel(port)} opened without streams`);
-  return { label: portLabel(port), readable, writable };
+  return { label: portLabel(port), readable, writable, bytesPerSecond: uartBytesPerSecond(MAXL_DEFAULT_BAUD) };
 }
 
 /** Words for a failed requestPort/open that a user can act on. */

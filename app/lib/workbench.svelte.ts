@@ -140,7 +140,7 @@ export class WorkbenchStore {
   private async connectPort(port: SerialPortLike): Promise<void> {
     try {
       const opened = await openPort(port);
-      this.send({ type: 'add-port', label: opened.label, readable: opened.readable, writable: opened.writable }, [
+      this.send({ type: 'add-port', label: opened.label, readable: opened.readable, writable: opened.writable, bytesPerSecond: opened.bytesPerSecond }, [
         opened.readable as unknown as Transferable,
         opened.writable as unknown as Transferable,
       ]);

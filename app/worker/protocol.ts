@@ -209,6 +209,8 @@ export type Command =
       label: string;
       readable: ReadableStream<Uint8Array>;
       writable: WritableStream<Uint8Array>;
+      /** what the port carries to the board (its UART at the baud it was opened with) */
+      bytesPerSecond: number;
     }
   | { type: 'remove-device'; id: string }
   | { type: 'set-config'; config: MachineConfig }

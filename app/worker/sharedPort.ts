@@ -13,6 +13,7 @@ import type { Link } from '../../core/index.ts';
 
 export class SharedPort {
   readonly label: string;
+  readonly bytesPerSecond: number | undefined;
   private readonly writer: WritableStreamDefaultWriter<Uint8Array>;
   private current: ReadableStreamDefaultController<Uint8Array> | null = null;
   private failure: Error | null = null;
@@ -20,6 +21,7 @@ export class SharedPort {
 
   constructor(port: Link) {
     this.label = port.label ?? 'port';
+    this.bytesPerSecond = port.bytesPerSecond;
     this.writer = port.writable.getWriter();
     this.closeUnderlying = port.close?.bind(port);
     void this.pump(port.readable);
@@ -53,6 +55,7 @@ export class SharedPort {
       readable,
       writable,
       label: this.label,
+      bytesPerSecond: this.bytesPerSecond,
       close: async () => {
         open = false;
         if (this.current === controller) this.endCurrent();

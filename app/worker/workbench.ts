@@ -107,7 +107,7 @@ export class Workbench {
         void this.usePreset(cmd.presetId, cmd.config);
         return;
       case 'add-port':
-        void this.addPort(cmd.label, cmd.readable, cmd.writable);
+        void this.addPort(cmd.label, cmd.readable, cmd.writable, cmd.bytesPerSecond);
         return;
       case 'remove-device':
         void this.removeDevice(cmd.id);
@@ -198,7 +198,7 @@ export class Workbench {
     await this.restart();
   }
 
-  private async addPort(label: string, readable: ReadableStream<Uint8Array>, writable: WritableStream<Uint8Array>): Promise<void> {
+  private async addPort(label: string, readable: ReadableStream<Uint8Array>, writable: WritableStream<Uint8Array>, bytesPerSecond: number): Promise<void> {
     if (this.sim) {
       // A real board joins: the simulated machine goes, the configuration stays for editing.
       await this.closeDevices();
@@ -206,7 +206,7 @@ export class Workbench {
       this.log('info', 'CONNECT', 'Left the simulated machine for real boards; the configuration is kept: check its subscriptions.');
     }
     if (this.scheduler instanceof PacedScheduler) this.useScheduler(new RealScheduler());
-    this.devices.push({ id: `port-${this.nextDeviceId++}`, port: new SharedPort({ readable, writable, label }), simulated: false, info: null });
+    this.devices.push({ id: `port-${this.nextDeviceId++}`, port: new SharedPort({ readable, writable, label, bytesPerSecond }), simulated: false, info: null });
     this.log('info', 'CONNECT', `Connected ${label}.`);
     this.devicesChanged = true;
     await this.restart();
@@ -282,6 +282,15 @@ export class Workbench {
       this.learnDevices(maxl);
       this.setPhase('ready', '');
       this.log('info', 'READY', `Ready: ${this.knownDevices().map((d) => d.name).join(', ')} in sync.`);
+      const limit = maxl.feedLimit;
+      // Worth saying where it shapes real jobs (a UART's 25 kB/s: ~1.5 ms), not for native USB's ~30 µs.
+      if (limit?.device && limit.minSegment_us >= 100) {
+        this.log(
+          'info',
+          'LINK',
+          `${limit.device}'s link carries ${(limit.bytesPerSecond / 1000).toFixed(0)} kB/s, so every segment lasts at least ${(limit.minSegment_us / 1000).toFixed(2)} ms (${limit.bytesPerSegment.toFixed(0)} bytes each): short segments run slower than the limits allow.`,
+        );
+      }
     } catch (err) {
       if (runtimeId !== this.runtimeId) return;
       this.learnDevices(maxl);

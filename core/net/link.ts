@@ -7,6 +7,16 @@
 /** The firmware's default serial rate (firmware MAXL_DEFAULT_BAUD); native-USB boards ignore it. */
 export const MAXL_DEFAULT_BAUD = 250_000;
 
+/**
+ * Bytes per second a UART carries at `baud`: 8N1 framing puts 10 bits on the wire
+ * per byte (a start bit, 8 data bits, a stop bit). An Uno's USB bridge feeds its
+ * ATmega328P through such a UART, so this is what reaches the board, whatever USB
+ * carries before it.
+ */
+export function uartBytesPerSecond(baud: number): number {
+  return baud / 10;
+}
+
 export interface Link {
   readonly readable: ReadableStream<Uint8Array>;
   readonly writable: WritableStream<Uint8Array>;
@@ -14,4 +24,10 @@ export interface Link {
   readonly label?: string;
   /** Closes the link; called by the runtime when a session ends. */
   close?(): Promise<void>;
+  /**
+   * Bytes per second the link carries to the device, if known. The runtime keeps
+   * the planned motion within it (linkFeedLimit.ts): a job that needs more
+   * would starve the device.
+   */
+  readonly bytesPerSecond?: number;
 }

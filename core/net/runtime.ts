@@ -23,6 +23,7 @@ import type { MessageOf } from './messages.ts';
 import { DeviceState, nameOf, type DeviceStateName } from './protocol.ts';
 import { DeviceSession, type DeviceInfo, type SessionOptions } from './session.ts';
 import { Streamer, type StreamerEvent, type StreamerOptions } from './streamer.ts';
+import { feedLimit, type FeedLimit } from './linkFeedLimit.ts';
 
 export interface RuntimeOptions {
   links: Link[];
@@ -31,6 +32,11 @@ export interface RuntimeOptions {
   streamer?: Partial<StreamerOptions>;
   /** how long begin() pings before streaming (µs), so the clock models have a rate */
   syncBeforeStart_us?: number;
+  /**
+   * Keep planned motion within what the links carry (linkFeedLimit.ts; default true).
+   * Off, a job that needs more than a link carries starves its device.
+   */
+  linkFeedLimit?: boolean;
 }
 
 /** One device as an app sees it. */
@@ -71,11 +77,27 @@ export class Runtime {
   private plans: DevicePlan[] = [];
   private listeners = new Set<(e: RuntimeEvent) => void>();
   private halted = false;
+  private limit: FeedLimit | null = null;
 
   constructor(host: RuntimeHost, options: RuntimeOptions) {
     this.host = host;
     this.options = options;
     this.scheduler = options.scheduler;
+  }
+
+  /** The floor on segment durations that keeps every link within its bytes (null before begin()). */
+  get feedLimit(): Readonly<FeedLimit> | null {
+    return this.limit;
+  }
+
+  /** Sets the queue's floor on segment durations from the links' bytes/s and the subscriptions. */
+  private limitFeedToLinks(plans: readonly DevicePlan[], infos: readonly DeviceInfo[]): void {
+    const links = this.options.links;
+    const loads = plans
+      .filter((p) => p.readsTrajectory)
+      .map((p) => ({ device: p.device, positionSlots: p.positionSlots.length, bytesPerSecond: links[infos.findIndex((i) => i.name === p.device)]?.bytesPerSecond }));
+    this.limit = this.options.linkFeedLimit === false ? feedLimit([]) : feedLimit(loads);
+    this.host.queue.setMinSegmentDuration(this.limit.minSegment_us * 1e-6);
   }
 
   on(listener: (e: RuntimeEvent) => void): () => void {
@@ -117,6 +139,7 @@ export class Runtime {
       );
     }
     this.plans = plans;
+    this.limitFeedToLinks(plans, infos);
     for (const plan of plans) {
       const session = this.sessions[infos.findIndex((i) => i.name === plan.device)];
       for (const sub of plan.subscribe) {

@@ -12,7 +12,7 @@
  * load its native binding.
  */
 import { MaxlError } from '../errors.ts';
-import { MAXL_DEFAULT_BAUD, type Link } from './link.ts';
+import { MAXL_DEFAULT_BAUD, uartBytesPerSecond, type Link } from './link.ts';
 
 export interface SerialportLinkOptions {
   baudRate?: number;
@@ -37,11 +37,11 @@ export async function openSerialportLink(path: string, options: SerialportLinkOp
       err ? reject(new MaxlError('DEVICE_UNAVAILABLE', `cannot open serial port ${path}: ${err.message}`, 'path')) : resolve(p),
     );
   });
-  return serialportLink(port, path);
+  return serialportLink(port, path, uartBytesPerSecond(baudRate));
 }
 
 /** Wraps an open port. Reading ends when the port closes; closing the link closes the port. */
-function serialportLink(port: NodePort, label: string): Link {
+function serialportLink(port: NodePort, label: string, bytesPerSecond: number): Link {
   let closed = false;
   const readable = new ReadableStream<Uint8Array>({
     start(controller) {
@@ -76,6 +76,7 @@ function serialportLink(port: NodePort, label: string): Link {
     readable,
     writable,
     label,
+    bytesPerSecond,
     close: () =>
       new Promise<void>((resolve) => {
         if (!port.isOpen) return resolve();

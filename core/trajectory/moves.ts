@@ -129,9 +129,24 @@ export interface PathTail {
 }
 
 /**
+ * The cruise cap (speed², mm²/s²) of a segment of `length` mm that must last at
+ * least `minDuration_s` (a link's floor: net/linkFeedLimit.ts). A segment whose
+ * speed never exceeds L/T lasts at least T: its duration is L over its mean speed,
+ * and the mean is at most the maximum. Entry and exit speeds are capped by the
+ * cruise cap too (the planner's maxEntry2 and the next segment's), so the cap
+ * bounds the whole profile.
+ */
+export function floorCruise2(cruise2: number, length: number, minDuration_s: number): number {
+  if (!(minDuration_s > 0)) return cruise2;
+  const v = length / minDuration_s;
+  return Math.min(cruise2, v * v);
+}
+
+/**
  * Splits a validated move into segments (one, unless a nonlinear transform needs
  * more), each with its planner inputs, numbered from firstId. Returns [] for a
- * zero-length move.
+ * zero-length move. With `minDuration_s`, each segment's speed is capped so that
+ * it lasts at least that long (floorCruise2).
  */
 export function segmentsForMove(
   config: ResolvedConfig,
@@ -139,6 +154,7 @@ export function segmentsForMove(
   tail: PathTail,
   firstId: number,
   moveId: number,
+  minDuration_s = 0,
 ): Segment[] {
   const p0 = tail.position;
   const total = distance(p0, move.end);
@@ -147,7 +163,7 @@ export function segmentsForMove(
   for (let i = 0; i < p0.length; i++) unit[i] = (move.end[i] - p0[i]) / total;
   const limits = config.limits;
   const speed = Math.min(move.maxVelocity, projectLimit(limits.maxSpeed, limits.axisMaxSpeed, unit));
-  const cruise2 = speed * speed;
+  const moveCruise2 = speed * speed;
   const accel = projectLimit(limits.maxAccel, limits.axisMaxAccel, unit);
 
   // Pieces of the move: one, unless a nonlinear transform needs more.
@@ -162,6 +178,7 @@ export function segmentsForMove(
     const f1 = fractions[k + 1];
     const end = last ? move.end : p0.map((v, i) => v + (move.end[i] - v) * f1);
     const length = (f1 - fractions[k]) * total;
+    const cruise2 = floorCruise2(moveCruise2, length, minDuration_s);
     const a1 = actuatorPosition(config.transforms, end);
     // Within one move all pieces share the direction; only the first meets a corner.
     const junction2 = prevUnit === null ? 0 : k === 0 ? junctionSpeed2(prevUnit, unit, limits) : Infinity;

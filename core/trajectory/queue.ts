@@ -19,7 +19,7 @@ import type { ResolvedConfig } from '../config/types.ts';
 import { LookaheadPlanner } from '../plan/lookahead.ts';
 import { shouldDropSpent } from '../plan/spentPrefix.ts';
 import { buildEventTracks, type EventTrack } from './events.ts';
-import { segmentsForMove, validateMove, ZERO_LENGTH_MM, type Move, type PathTail, type ValidatedMove } from './moves.ts';
+import { floorCruise2, segmentsForMove, validateMove, ZERO_LENGTH_MM, type Move, type PathTail, type ValidatedMove } from './moves.ts';
 import { Segment, type SegmentState } from './segment.ts';
 
 export type QueueEventType = 'added' | 'planned' | 'replanned' | 'transmitted' | 'historical' | 'removed';
@@ -51,6 +51,8 @@ export class TrajectoryQueue {
   readonly capacity: number;
   /** Zero-length moves skipped so far. */
   skippedZeroLength = 0;
+  /** Floor on every new segment's duration, s (the links' limit: net/linkFeedLimit.ts); 0 for none. */
+  private minSegmentDuration_s = 0;
 
   /**
    * Live segments (transmitted, then untransmitted) in path order from live[head].
@@ -87,6 +89,21 @@ export class TrajectoryQueue {
     this.tail = { position, unit: null, cruise2: 0 };
     this.lockedEventValues = new Array<number>(config.eventChannels.length).fill(0);
     this.planner = new LookaheadPlanner<Segment>((seg) => this.onPlanned(seg));
+  }
+
+  /**
+   * Sets a floor on the duration of segments added from now on (s; 0 for none): the
+   * runtime's, so that the links can carry them (net/linkFeedLimit.ts). Segments
+   * already queued keep their caps.
+   */
+  setMinSegmentDuration(seconds: number): void {
+    if (!(seconds >= 0) || !Number.isFinite(seconds)) throw new MaxlError('CONFIG_INVALID', `must be a finite duration ≥ 0 s, got ${seconds}`, 'minSegmentDuration');
+    this.minSegmentDuration_s = seconds;
+  }
+
+  /** The floor on new segments' durations, s (0: none). */
+  get minSegmentDuration(): number {
+    return this.minSegmentDuration_s;
   }
 
   // --- reading ---
@@ -207,7 +224,7 @@ export class TrajectoryQueue {
 
   /** Turns a move into segments at the tail and plans them; `added` collects them for an edit's report. */
   private enqueue(move: ValidatedMove, moveId: number, added: Segment[] | null): MoveReceipt {
-    const segments = segmentsForMove(this.config, move, this.tail, this.nextSegmentId, moveId);
+    const segments = segmentsForMove(this.config, move, this.tail, this.nextSegmentId, moveId, this.minSegmentDuration_s);
     if (segments.length === 0) {
       this.skippedZeroLength++;
       return { moveId, segmentIds: [], skipped: true };
@@ -319,7 +336,7 @@ export class TrajectoryQueue {
       piece.actuatorStart = actuatorStart;
       piece.actuatorRate = seg.actuatorRate;
       piece.accel = seg.accel;
-      piece.cruise2 = seg.cruise2;
+      piece.cruise2 = floorCruise2(seg.cruise2, length, this.minSegmentDuration_s);
       return piece;
     };
     const a = make(this.nextSegmentId++, seg.start, mid, distance, seg.moveOffset, seg.actuatorStart);
@@ -332,7 +349,7 @@ export class TrajectoryQueue {
       seg.actuatorStart.map((p, j) => p + seg.actuatorRate[j] * distance),
     );
     a.maxEntry2 = seg.maxEntry2;
-    b.maxEntry2 = rest ? 0 : seg.cruise2; // straight on: only the cruise cap applies
+    b.maxEntry2 = rest ? 0 : Math.min(a.cruise2, b.cruise2); // straight on: only the cruise caps apply
     this.replanFrom(index, () => {
       this.live.splice(index, 1, a, b);
       this.untransmitted++;

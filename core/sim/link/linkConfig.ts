@@ -58,6 +58,13 @@ export const USB_FULL_SPEED_LINK: LinkConfig = {
   seed: 1,
 };
 
+/**
+ * An Uno-class board: USB reaches a bridge chip (the 16U2), which passes bytes to
+ * the ATmega328P over a 250 000 baud UART, 25 000 bytes/s (uartBytesPerSecond).
+ * Shaped as 25 bytes per 1 ms frame; the USB delays stay as above.
+ */
+export const UNO_UART_LINK: LinkOverrides = { packetBytes: 25, bytesPerFrame: 25 };
+
 /** A partial link config: any field left out takes the USB full-speed default. */
 export interface LinkOverrides {
   framePeriod_us?: number;

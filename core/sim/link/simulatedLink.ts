@@ -79,7 +79,13 @@ export class SimulatedLink {
         this.toDevice.submit(chunk.slice(), this.scheduler.now());
       },
     });
-    this.link = { readable, writable, label, close: () => this.close() };
+    this.link = {
+      readable,
+      writable,
+      label,
+      bytesPerSecond: (this.config.bytesPerFrame * 1e6) / this.config.framePeriod_us,
+      close: () => this.close(),
+    };
     this.device = {
       send: (bytes, written_us) => this.toAuthor.submit(bytes.slice(), written_us),
       onReceive: (handler) => (this.receiver = handler),
