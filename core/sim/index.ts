@@ -8,7 +8,7 @@ export { createSimulatedMachine, type SimulatedMachine, type SimulatedMachineOpt
 export { PRESETS, lightPainter, blotPlotter, accelRig, type MachinePreset, type SimulatedDeviceSpec, type PresetReader } from './presets/index.ts';
 export { fetchWasmLoader, cachedLoader, type WasmLoader } from './device/wasmLoader.ts';
 export { SimulatedLink, type DevicePort, type LinkReport } from './link/simulatedLink.ts';
-export { USB_FULL_SPEED_LINK, resolveLinkConfig, type LinkConfig, type LinkDirectionConfig, type LinkOverrides } from './link/linkConfig.ts';
+export { USB_FULL_SPEED_LINK, UNO_UART_LINK, resolveLinkConfig, type LinkConfig, type LinkDirectionConfig, type LinkOverrides } from './link/linkConfig.ts';
 export type { LinkDirectionCounters } from './link/linkCounters.ts';
 export { WasmDevice, type WasmDeviceOptions, type OutputRecord, type DeviceCounters } from './device/wasmDevice.ts';
 export { DeviceRunner } from './device/deviceRunner.ts';
