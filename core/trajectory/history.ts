@@ -29,6 +29,12 @@ export interface HistoricalSegment extends TimedSegment {
   eventTracks: readonly EventTrack[];
 }
 
+/** Copies values[0 … count) to d from offset o; returns the offset after them. */
+function copyInto(d: Float64Array, o: number, values: readonly number[], count: number): number {
+  for (let i = 0; i < count; i++) d[o + i] = values[i];
+  return o + count;
+}
+
 export class TrajectoryHistory {
   readonly capacity: number;
   private readonly axes: number;
@@ -60,27 +66,31 @@ export class TrajectoryHistory {
     const timing = seg.timing;
     if (timing === null || timing.length > MAX_PHASES * PHASE_STRIDE) throw new Error(`history: segment ${seg.id} has no timing or too many phases`);
     const n = this.count++;
-    if (n >= this.capacity) this.events.delete(n - this.capacity);
-    else if ((n + 1) * this.stride > this.data.length) {
-      const grown = new Float64Array(Math.min(this.capacity, 2 * (n + 1)) * this.stride);
-      grown.set(this.data);
-      this.data = grown;
-    }
+    if (n < this.capacity) this.makeRoomFor(n);
+    else if (this.events.size > 0) this.events.delete(n - this.capacity); // its slot is reused now
     const d = this.data;
     let o = (n % this.capacity) * this.stride;
     d[o] = seg.startTime_us;
     d[o + 1] = seg.duration_s;
     d[o + 2] = seg.length;
     d[o + 3] = timing.length;
-    for (let k = 0; k < timing.length; k++) d[o + HEADER + k] = timing[k];
+    copyInto(d, o + HEADER, timing, timing.length);
     o += HEADER + MAX_PHASES * PHASE_STRIDE;
-    for (let i = 0; i < this.axes; i++) d[o++] = seg.start[i];
-    for (let i = 0; i < this.axes; i++) d[o++] = seg.unit[i];
-    for (let j = 0; j < this.actuators; j++) d[o++] = seg.actuatorStart[j];
-    for (let j = 0; j < this.actuators; j++) d[o++] = seg.actuatorRate[j];
+    o = copyInto(d, o, seg.start, this.axes);
+    o = copyInto(d, o, seg.unit, this.axes);
+    o = copyInto(d, o, seg.actuatorStart, this.actuators);
+    o = copyInto(d, o, seg.actuatorRate, this.actuators);
     const atStart = seg.eventsAtStart;
     for (let c = 0; c < this.channels; c++) d[o++] = atStart ? atStart[c] : 0;
     if (seg.eventTracks && seg.eventTracks.length > 0) this.events.set(n, seg.eventTracks);
+  }
+
+  /** Grows the ring (doubling, up to capacity) so that it has a slot for record n < capacity. */
+  private makeRoomFor(n: number): void {
+    if ((n + 1) * this.stride <= this.data.length) return;
+    const grown = new Float64Array(Math.min(this.capacity, 2 * (n + 1)) * this.stride);
+    grown.set(this.data);
+    this.data = grown;
   }
 
   /** The i-th record held, 0 the oldest, rebuilt as plain objects. */
