@@ -13,6 +13,8 @@
 //                         period after its ideal time, none more than 2 µs
 //                         early, none missing (libsimavr harness, see
 //                         bench/firmware/simavr_steps.c); searched in 250 Hz
+//   avrStepRateTwoSteppersHz  the same for two steppers on the timer at once
+//                         (BlotPlotter's CoreXY pair), each at the rate
 //   hostInstructionsPerEval  the same evaluation on the host (callgrind)
 //   bytesPerLinearSegment merged from bench/segment-bytes.ts (the TS encoder)
 //                         when that file exists
@@ -43,7 +45,7 @@ const log = (...a) => console.log('[bench firmware]', ...a);
 const clean = (s) => s.replace(/\x1b\[[0-9;]*m/g, '');
 
 // ---- builds
-for (const sketch of ['EvalCycles', 'StepRate']) {
+for (const sketch of ['EvalCycles', 'StepRate', 'StepRateTwo']) {
   must('bash', ['scripts/firmware-avr-sketch.sh', `firmware/bench/${sketch}`, out], `AVR build of ${sketch}`);
 }
 const harness = path.join(out, 'simavr_steps');
@@ -60,36 +62,41 @@ const one = parse('oneSlot');
 const two = parse('twoSlots');
 log(`evaluation, one slot: ${one.mean} cycles mean, ${one.max} max over ${one.evaluations}; two slots: ${two.mean} mean`);
 
-// ---- step rate: binary search for the highest rate without a missed step
-const elf = path.join(out, 'StepRate/StepRate.elf');
-const trials = new Map();
-function trial(rate) {
-  if (trials.has(rate)) return trials.get(rate);
-  const r = run('timeout', ['600', harness, elf, String(rate)]);
-  const line = r.stdout.trim().split('\n').pop();
-  let result;
-  try {
-    result = JSON.parse(line);
-  } catch {
-    throw new Error(`harness gave no JSON at ${rate} Hz:\n${r.stdout}${r.stderr}`);
+// ---- step rate: binary search for the highest rate without a missed step,
+// for one stepper (the Stepper example) and for two (BlotPlotter's CoreXY pair,
+// both stepping at the rate: STEPPERS=2 in the harness)
+function searchRate(label, elf, env) {
+  const trials = new Map();
+  function trial(rate) {
+    if (trials.has(rate)) return trials.get(rate);
+    const r = run('timeout', ['600', harness, elf, String(rate)], { env: { ...process.env, ...env } });
+    const line = (r.stdout || '').trim().split('\n').pop();
+    let result;
+    try {
+      result = JSON.parse(line);
+    } catch {
+      throw new Error(`harness gave no JSON at ${rate} Hz (${label}):\n${r.stdout}${r.stderr}`);
+    }
+    if (result.nacks || result.steps === 0) throw new Error(`the device refused the move at ${rate} Hz (${label}): ${line}`);
+    log(`${label}, ${rate} Hz: ${result.missed} missed of ${result.expected} (late ${result.late}, early ${result.early}), max lag ${result.maxLagUs} µs, loop ${result.loopMeanCycles} cycles mean, ${(result.loopMaxCycles / 16).toFixed(0)} µs max`);
+    trials.set(rate, result);
+    return result;
   }
-  if (result.nacks || result.steps === 0) throw new Error(`the device refused the move at ${rate} Hz: ${line}`);
-  log(`${rate} Hz: ${result.missed} missed of ${result.expected} (late ${result.late}, early ${result.early}), max lag ${result.maxLagUs} µs, loop ${result.loopMeanCycles} cycles mean, ${(result.loopMaxCycles / 16).toFixed(0)} µs max`);
-  trials.set(rate, result);
-  return result;
+  const STEP = 250;
+  let lo = 0;
+  let hi = 80000;
+  if (trial(hi).missed === 0) lo = hi;
+  while (hi - lo > STEP) {
+    const mid = Math.round((lo + hi) / 2 / STEP) * STEP;
+    if (mid <= lo || mid >= hi) break;
+    if (trial(mid).missed === 0) lo = mid;
+    else hi = mid;
+  }
+  log(lo ? `${label}: highest rate without a missed step: ${lo} Hz` : `${label}: steps were missed at every rate tried`);
+  return { rate: lo, best: lo ? trials.get(lo) : null };
 }
-const STEP = 250;
-let lo = 0;
-let hi = 80000;
-if (trial(hi).missed === 0) lo = hi;
-while (hi - lo > STEP) {
-  const mid = Math.round((lo + hi) / 2 / STEP) * STEP;
-  if (mid <= lo || mid >= hi) break;
-  if (trial(mid).missed === 0) lo = mid;
-  else hi = mid;
-}
-const best = lo ? trials.get(lo) : null;
-log(lo ? `highest rate without a missed step: ${lo} Hz` : 'steps were missed at every rate tried');
+const { rate: lo, best } = searchRate('one stepper', path.join(out, 'StepRate/StepRate.elf'), {});
+const pair = searchRate('two steppers', path.join(out, 'StepRateTwo/StepRateTwo.elf'), { STEPPERS: '2' });
 
 // ---- host instructions per evaluation (callgrind)
 let hostInstructionsPerEval;
@@ -138,6 +145,8 @@ const result = {
   avrStepRateDefinition:
     'highest cruise rate (250 Hz grid, 80 steps/mm, 10000 mm/s² ramps, 300 ms cruise, all frames sent before the move, STATUS reports running) at which every step edge comes within one step period after its ideal time, none more than 2 µs early, none missing',
   ...(best ? { avrStepRateMaxLagUs: best.maxLagUs, avrLoopCyclesMean: best.loopMeanCycles, avrLoopMaxUs: Number((best.loopMaxCycles / 16).toFixed(1)) } : {}),
+  avrStepRateTwoSteppersHz: pair.rate,
+  avrStepRateTwoSteppersDefinition: 'the same move on two steppers at once (StepRateTwo: STEP D2 and D3, both on the step timer, as BlotPlotter), each at the rate; every step of both checked',
   ...(hostInstructionsPerEval !== undefined ? { hostInstructionsPerEval } : {}),
   ...(bytesPerLinearSegment !== undefined ? { bytesPerLinearSegment } : {}),
 };

@@ -16,7 +16,12 @@
  * MISSED when it comes later than one step period (1 / step rate at that
  * moment) after its ideal time, earlier than 2 µs before it, or not at all.
  *
+ * With STEPPERS=2 in the environment the sketch has two steppers (STEP D2/DIR D5
+ * and STEP D3/DIR D6, as BlotPlotter's CoreXY pair): both are subscribed (slots 0
+ * and 1) to the same move, so each steps at RATE_HZ, and both are checked.
+ *
  * Prints one JSON line: {"rate":..,"steps":..,"expected":..,"missed":..,...}
+ * (steps and missed summed over the steppers).
  *
  *   simavr_steps FILE.elf RATE_HZ [ACCEL_MM_S2 [CRUISE_MS]]
  */
@@ -39,8 +44,8 @@
 #define CRUISE_SEGMENTS 6  /* 8 segments in all: the Uno queue holds 10 */
 
 static avr_t *avr;
-static uint64_t edges[MAX_EDGES];
-static int edgeCount = 0, edgeOverflow = 0, dirChanges = 0, lastDir = -1;
+static uint64_t edges[2][MAX_EDGES];
+static int edgeCount[2] = {0, 0}, edgeOverflow = 0, dirChanges = 0, lastDir = -1;
 static uint64_t calCycle = 0;
 static int calMicrosKnown = 0;
 static double calMicros = 0;
@@ -66,9 +71,10 @@ static void onUart(struct avr_irq_t *irq, uint32_t value, void *param) {
   if (rxLen < (int)sizeof rxBytes) rxBytes[rxLen++] = b;
 }
 static void onStep(struct avr_irq_t *irq, uint32_t value, void *param) {
-  (void)irq; (void)param;
+  (void)irq;
+  int m = param ? 1 : 0;
   if (!value) return;
-  if (edgeCount < MAX_EDGES) edges[edgeCount++] = avr->cycle; else edgeOverflow = 1;
+  if (edgeCount[m] < MAX_EDGES) edges[m][edgeCount[m]++] = avr->cycle; else edgeOverflow = 1;
 }
 static void onDir(struct avr_irq_t *irq, uint32_t value, void *param) {
   (void)irq; (void)param;
@@ -209,7 +215,9 @@ int main(int argc, char **argv) {
   avr->log = 0;
   avr_load_firmware(avr, &fw);
   avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT), onUart, NULL);
+  int steppers = getenv("STEPPERS") && atoi(getenv("STEPPERS")) == 2 ? 2 : 1;
   avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('D'), 2), onStep, NULL);
+  if (steppers == 2) avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('D'), 3), onStep, (void *)1);
   avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('D'), 5), onDir, NULL);
   avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 0), onCal, NULL);
   avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 1), onLoop, NULL);
@@ -239,13 +247,17 @@ int main(int argc, char **argv) {
   uint8_t p[64];
   int n;
   p[0] = 1; sendPacket(0x01, p, 1);                               /* HELLO_REQUEST */
-  p[0] = 0; p[1] = 1; p[2] = 0; sendPacket(0x04, p, 3);           /* SUBSCRIBE stepper -> slot 0 */
-  for (int first = 0; first < segCount; first += 6) {            /* GEOMETRY, 6 per frame */
-    int count = segCount - first < 6 ? segCount - first : 6;
+  for (int m = 0; m < steppers; m++) { p[0] = (uint8_t)m; p[1] = 1; p[2] = (uint8_t)m; sendPacket(0x04, p, 3); } /* SUBSCRIBE stepper m -> slot m */
+  int perGeometry = steppers == 2 ? 4 : 6;                        /* what fits a 60-byte payload */
+  for (int first = 0; first < segCount; first += perGeometry) {  /* GEOMETRY */
+    int count = segCount - first < perGeometry ? segCount - first : perGeometry;
     n = 0;
     n += putU16(p + n, (uint32_t)first); p[n++] = (uint8_t)count; p[n++] = first == 0 ? 1 : 0;
-    if (first == 0) n += putU32(p + n, 0);
-    for (int i = first; i < first + count; i++) { n += putF32(p + n, seg[i].length); n += putU32(p + n, (uint32_t)seg[i].p1); }
+    if (first == 0) for (int m = 0; m < steppers; m++) n += putU32(p + n, 0);
+    for (int i = first; i < first + count; i++) {
+      n += putF32(p + n, seg[i].length);
+      for (int m = 0; m < steppers; m++) n += putU32(p + n, (uint32_t)seg[i].p1);
+    }
     sendPacket(0x05, p, n);
   }
   for (int first = 0; first < segCount; first += 4) {            /* TIMING, 4 per frame */
@@ -303,14 +315,18 @@ int main(int argc, char **argv) {
   int missed = 0, early = 0, late = 0;
   double maxLag = -1e9, minLag = 1e9, maxLagCruise = -1e9, worstRatio = 0;
   double cruiseStart = seg[1].start, cruiseEnd = seg[segCount - 1].start;
+  int extra = 0, totalEdges = 0;
+  for (int m = 0; m < steppers; m++) {
+  totalEdges += edgeCount[m];
+  if (edgeCount[m] > expected) extra += edgeCount[m] - (int)expected;
   for (long k = 1; k <= expected; k++) {
     double target = (k - 0.5) * stepUnits, lo = seg[0].start, hi = end;
     for (int it = 0; it < 60; it++) { double mid = 0.5 * (lo + hi), pos, sp; stateAt(mid, &pos, &sp); if (pos < target) lo = mid; else hi = mid; }
     double ideal = hi, pos, speed;
     stateAt(ideal, &pos, &speed);
     double period = speed > 1e-9 ? 1e6 / (speed * STEPS_PER_MM) : 1e12;
-    if (k > edgeCount) { missed++; continue; }
-    double lag = deviceMicros(edges[k - 1]) - ideal;
+    if (k > edgeCount[m]) { missed++; continue; }
+    double lag = deviceMicros(edges[m][k - 1]) - ideal;
     if (lag > maxLag) maxLag = lag;
     if (lag < minLag) minLag = lag;
     if (ideal >= cruiseStart && ideal < cruiseEnd && lag > maxLagCruise) maxLagCruise = lag;
@@ -318,11 +334,12 @@ int main(int argc, char **argv) {
     if (lag > period) { late++; missed++; }
     else if (lag < -2.0) { early++; missed++; }
   }
+  }
   printf("{\"rate\":%.0f,\"speedMmS\":%.3f,\"accelMmS2\":%.0f,\"steps\":%d,\"expected\":%ld,\"missed\":%d,\"late\":%d,\"early\":%d,"
          "\"maxLagUs\":%.2f,\"minLagUs\":%.2f,\"maxLagCruiseUs\":%.2f,\"worstLagOverPeriod\":%.3f,\"dirChanges\":%d,"
          "\"acks\":%d,\"nacks\":%d,\"statuses\":%d,\"edgeOverflow\":%d,"
          "\"loopMeanCycles\":%.1f,\"loopMaxCycles\":%llu,\"loopHistogramUs\":{\"<25\":%llu,\"<30\":%llu,\"<40\":%llu,\"<50\":%llu,\"<100\":%llu,\"<200\":%llu,\"<500\":%llu,\">=500\":%llu}}\n",
-         rate, v, accel, edgeCount, expected, missed + (edgeCount > expected ? edgeCount - (int)expected : 0), late, early,
+         rate, v, accel, totalEdges, expected * steppers, missed + extra, late, early,
          maxLag, minLag, maxLagCruise, worstRatio, dirChanges, acks, nacks, statuses, edgeOverflow,
          loopCount ? (double)loopCycles / loopCount : 0.0, (unsigned long long)loopMax,
          (unsigned long long)loopHist[0], (unsigned long long)loopHist[1], (unsigned long long)loopHist[2], (unsigned long long)loopHist[3],
