@@ -23,6 +23,11 @@
  * Prints one JSON line: {"rate":..,"steps":..,"expected":..,"missed":..,...}
  * (steps and missed summed over the steppers).
  *
+ * Debugging: BENCH_DEBUG=1 prints segment starts, loops over 150 µs and every
+ * late step; BENCH_PROFILE=FILE samples the program counter during the move
+ * (bench/firmware/profile_symbols.py), only inside loops longer than N cycles
+ * with BENCH_PROFILE_STALLS=N (1 600 if N is not given).
+ *
  *   simavr_steps FILE.elf RATE_HZ [ACCEL_MM_S2 [CRUISE_MS]]
  */
 #include <math.h>
@@ -292,7 +297,7 @@ int main(int argc, char **argv) {
     if (stopCycle && avr->cycle >= stopCycle) break;
     /* loop periods while the move runs (cruise and ramps) */
     measureLoops = sent == txLen && deviceMicros(avr->cycle) >= seg[0].start && deviceMicros(avr->cycle) < end;
-    if (profilePath && measureLoops && avr->cycle >= nextSample && (!getenv("BENCH_PROFILE_STALLS") || avr->cycle - lastLoop > 1600)) { pcCount[(avr->pc >> 1) & 16383]++; nextSample = avr->cycle + 97; }
+    if (profilePath && measureLoops && avr->cycle >= nextSample && (!getenv("BENCH_PROFILE_STALLS") || avr->cycle - lastLoop > (uint64_t)(atoi(getenv("BENCH_PROFILE_STALLS")) > 1 ? atoi(getenv("BENCH_PROFILE_STALLS")) : 1600))) { pcCount[(avr->pc >> 1) & 16383]++; nextSample = avr->cycle + 97; }
   }
 
   if (profilePath) { FILE *f = fopen(profilePath, "w"); for (int i = 0; i < 16384; i++) if (pcCount[i]) fprintf(f, "%d %u\n", i * 2, pcCount[i]); fclose(f); }
@@ -331,7 +336,7 @@ int main(int argc, char **argv) {
     if (lag < minLag) minLag = lag;
     if (ideal >= cruiseStart && ideal < cruiseEnd && lag > maxLagCruise) maxLagCruise = lag;
     if (lag / period > worstRatio) worstRatio = lag / period;
-    if (lag > period) { late++; missed++; }
+    if (lag > period) { late++; missed++; if (getenv("BENCH_DEBUG")) fprintf(stderr, "late: stepper %d step %ld ideal %.1f lag %.1f\n", m, k, ideal, lag); }
     else if (lag < -2.0) { early++; missed++; }
   }
   }
