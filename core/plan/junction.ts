@@ -43,8 +43,16 @@ export function junctionSpeed2(uIn: readonly number[], uOut: readonly number[], 
   if (cosHalf === 0) return Infinity; // straight on
   if (sinHalf === 0) return 0; // full reversal
   // Direction of the velocity change at the corner: (u_out − u_in) / |u_out − u_in|.
-  const change = new Array<number>(uIn.length);
+  const change = changeScratch(uIn.length);
   for (let i = 0; i < uIn.length; i++) change[i] = (uOut[i] - uIn[i]) / (2 * cosHalf);
   const accel = projectLimit(limits.maxAccel, limits.axisMaxAccel, change);
   return (accel * limits.junctionDeviation * sinHalf * (1 + sinHalf)) / (cosHalf * cosHalf);
+}
+
+/** Reused for the direction of the velocity change: a corner is planned a million times a second, and nothing keeps it. */
+let changeBuffer: number[] = [];
+
+function changeScratch(axes: number): number[] {
+  if (changeBuffer.length !== axes) changeBuffer = new Array<number>(axes).fill(0);
+  return changeBuffer;
 }
