@@ -160,7 +160,8 @@ export class LookaheadPlanner<B extends PlanBlock> {
     const count = this.size;
     if (count === 0) throw new Error('lockFront: no unlocked block');
     const block = this.blocks[this.head];
-    if (this.plannedCount === 0) {
+    const decidedNow = this.plannedCount === 0;
+    if (decidedNow) {
       // Not final yet: decide with what is known now (always stoppable: e ≤ b).
       const exit2 = this.frontExit2();
       block.exit2 = exit2;
@@ -172,7 +173,11 @@ export class LookaheadPlanner<B extends PlanBlock> {
     this.head++;
     this.first++;
     if (this.size === 0) this.reset();
-    else this.advance(false);
+    // Every operation leaves the planned pointer as far as it can go. Locking a front
+    // that was already final changes neither the entry there nor any bound (W and C
+    // are absolute), so the pointer stays; only an exit decided now, which fixes the
+    // next block's entry, may let it move.
+    else if (decidedNow) this.advance(false);
     this.compact();
     return block;
   }
