@@ -102,11 +102,19 @@ export function resolveLimits(limits: LimitsConfig | undefined, axes: number, fi
 export function projectLimit(magnitude: number, perAxisLimits: readonly number[], u: readonly number[]): number {
   let limit = magnitude;
   for (let i = 0; i < u.length; i++) {
+    const axisLimit = perAxisLimits[i];
+    if (axisLimit === Infinity) continue; // unbounded axis: ∞/|uᵢ| never lowers the limit (and a division is slow)
     const c = Math.abs(u[i]);
     if (c > 0) {
-      const axisLimit = perAxisLimits[i] / c;
-      if (axisLimit < limit) limit = axisLimit;
+      const projected = axisLimit / c;
+      if (projected < limit) limit = projected;
     }
   }
   return limit;
+}
+
+/** Whether any axis has a finite limit, so that projectLimit() depends on the direction. */
+export function boundsAnAxis(perAxisLimits: readonly number[]): boolean {
+  for (let i = 0; i < perAxisLimits.length; i++) if (perAxisLimits[i] !== Infinity) return true;
+  return false;
 }

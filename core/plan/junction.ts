@@ -26,7 +26,7 @@
  * u_out − u_in, so the acceleration limit used is the one projected on that
  * direction (per-axis limits make it direction dependent).
  */
-import { projectLimit, type ResolvedLimits } from '../config/limits.ts';
+import { boundsAnAxis, projectLimit, type ResolvedLimits } from '../config/limits.ts';
 
 /** Max junction speed² (mm²/s²) between unit directions uIn and uOut. Infinity for a straight line. */
 export function junctionSpeed2(uIn: readonly number[], uOut: readonly number[], limits: ResolvedLimits): number {
@@ -42,17 +42,18 @@ export function junctionSpeed2(uIn: readonly number[], uOut: readonly number[], 
   const cosHalf = Math.sqrt(diff2) / 2;
   if (cosHalf === 0) return Infinity; // straight on
   if (sinHalf === 0) return 0; // full reversal
-  // Direction of the velocity change at the corner: (u_out − u_in) / |u_out − u_in|.
-  const change = changeScratch(uIn.length);
-  for (let i = 0; i < uIn.length; i++) change[i] = (uOut[i] - uIn[i]) / (2 * cosHalf);
-  const accel = projectLimit(limits.maxAccel, limits.axisMaxAccel, change);
+  const accel = boundsAnAxis(limits.axisMaxAccel)
+    ? projectLimit(limits.maxAccel, limits.axisMaxAccel, changeDirection(uIn, uOut, cosHalf))
+    : limits.maxAccel; // a bound on |a| alone is the same in every direction
   return (accel * limits.junctionDeviation * sinHalf * (1 + sinHalf)) / (cosHalf * cosHalf);
 }
 
-/** Reused for the direction of the velocity change: a corner is planned a million times a second, and nothing keeps it. */
+/** Reused by changeDirection(): a corner is planned a million times a second, and nothing keeps its direction. */
 let changeBuffer: number[] = [];
 
-function changeScratch(axes: number): number[] {
-  if (changeBuffer.length !== axes) changeBuffer = new Array<number>(axes).fill(0);
+/** Direction of the velocity change at the corner, (u_out − u_in) / |u_out − u_in|, where |u_out − u_in| = 2·cos(θ/2). */
+function changeDirection(uIn: readonly number[], uOut: readonly number[], cosHalf: number): number[] {
+  if (changeBuffer.length !== uIn.length) changeBuffer = new Array<number>(uIn.length).fill(0);
+  for (let i = 0; i < uIn.length; i++) changeBuffer[i] = (uOut[i] - uIn[i]) / (2 * cosHalf);
   return changeBuffer;
 }
