@@ -64,6 +64,8 @@ export class TrajectoryHistory {
   private data: Float64Array;
   /** Records pushed so far; record n lives at slot n % capacity while n ≥ count − capacity. */
   private count = 0;
+  /** count % capacity, kept by push() rather than divided out for every record. */
+  private nextSlot = 0;
   private readonly events = new Map<number, readonly EventTrack[]>();
 
   constructor(axes: number, actuators: number, channels: number, capacity: number) {
@@ -88,7 +90,8 @@ export class TrajectoryHistory {
     if (n < this.capacity) this.makeRoomFor(n);
     else if (this.events.size > 0) this.events.delete(n - this.capacity); // its slot is reused now
     const d = this.data;
-    const o = (n % this.capacity) * this.stride;
+    const o = this.nextSlot * this.stride;
+    this.nextSlot = this.nextSlot + 1 === this.capacity ? 0 : this.nextSlot + 1;
     d[o] = seg.startTime_us;
     d[o + 1] = seg.duration_s;
     d[o + 2] = seg.length;
