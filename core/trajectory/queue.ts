@@ -19,7 +19,7 @@ import type { ResolvedConfig } from '../config/types.ts';
 import { LookaheadPlanner } from '../plan/lookahead.ts';
 import { shouldDropSpent } from '../plan/spentPrefix.ts';
 import { buildEventTracks, type EventTrack } from './events.ts';
-import { floorCruise2, segmentsForMove, validateMove, ZERO_LENGTH_MM, type Move, type PathTail, type ValidatedMove } from './moves.ts';
+import { segmentsForMove, validateMove, ZERO_LENGTH_MM, type Move, type PathTail, type ValidatedMove } from './moves.ts';
 import { Segment, type SegmentState } from './segment.ts';
 
 export type QueueEventType = 'added' | 'planned' | 'replanned' | 'transmitted' | 'historical' | 'removed';
@@ -336,7 +336,10 @@ export class TrajectoryQueue {
       piece.actuatorStart = actuatorStart;
       piece.actuatorRate = seg.actuatorRate;
       piece.accel = seg.accel;
-      piece.cruise2 = floorCruise2(seg.cruise2, length, this.minSegmentDuration_s);
+      // The piece keeps the whole segment's cap, floor or none: a slice may be far shorter than
+      // the floor allows at the speed the machine already runs into it, and splitting costs the
+      // link one segment more, not a stream of them.
+      piece.cruise2 = seg.cruise2;
       return piece;
     };
     const a = make(this.nextSegmentId++, seg.start, mid, distance, seg.moveOffset, seg.actuatorStart);
@@ -349,7 +352,7 @@ export class TrajectoryQueue {
       seg.actuatorStart.map((p, j) => p + seg.actuatorRate[j] * distance),
     );
     a.maxEntry2 = seg.maxEntry2;
-    b.maxEntry2 = rest ? 0 : Math.min(a.cruise2, b.cruise2); // straight on: only the cruise caps apply
+    b.maxEntry2 = rest ? 0 : seg.cruise2; // straight on: only the cruise cap applies
     this.replanFrom(index, () => {
       this.live.splice(index, 1, a, b);
       this.untransmitted++;
