@@ -35,7 +35,7 @@ import { evaluateTiming } from '../plan/phases.ts';
 import type { DeviceSession, SendResult } from './session.ts';
 import type { Message, MessageOf } from './messages.ts';
 import { geometryMessages, timingMessages, type PositionSlot } from './segmentEncoding.ts';
-import { MAX_ENCODED, MAX_PAYLOAD } from './protocol.ts';
+import { MAX_PAYLOAD } from './protocol.ts';
 
 /** What one device reads of the trajectory, and how to reach it. */
 export interface DeviceBinding {
@@ -68,9 +68,6 @@ export interface StreamerOptions {
   /** pump period while anything moves or waits (µs) */
   tick_us: number;
 }
-
-/** What a run's first pump sends a device: a GEOMETRY and a TIMING frame, each at most MAX_ENCODED + 1 bytes. */
-export const LINK_BURST_BYTES = 2 * (MAX_ENCODED + 1);
 
 export const DEFAULT_STREAMER: StreamerOptions = {
   minLead_us: 2_000,
@@ -132,36 +129,25 @@ export class Streamer {
     this.options = { ...DEFAULT_STREAMER, ...options };
   }
 
-  /**
-   * The slowest device's delay, µs: its recent worst round trip, plus the time its
-   * link takes to carry a burst of LINK_BURST_BYTES (the GEOMETRY and TIMING frames
-   * that start a run). Pings measure the round trip with small frames; on a slow
-   * link (an Uno's 25 kB/s UART: 5 ms for the burst) a segment's own bytes take
-   * longer than that.
-   */
-  private worstDelay_us(): number {
-    let worst = 0;
-    for (const d of this.devices) {
-      const bytesPerSecond = d.binding.session.link.bytesPerSecond;
-      const burst_us = bytesPerSecond && bytesPerSecond > 0 ? (LINK_BURST_BYTES / bytesPerSecond) * 1e6 : 0;
-      worst = Math.max(worst, (d.binding.session.clock.rttHigh || 0) + burst_us);
-    }
-    return worst;
-  }
-
-  /** µs of motion kept ahead: twice the slowest device's delay (round trip and burst) plus a margin. */
+  /** µs of motion kept ahead: 2·RTT (the slowest device's recent worst) plus a margin. */
   get lead_us(): number {
-    return Math.max(this.options.minLead_us, 2 * this.worstDelay_us() + this.options.leadMargin_us);
+    let rtt = 0;
+    for (const d of this.devices) rtt = Math.max(rtt, d.binding.session.clock.rttHigh || 0);
+    return Math.max(this.options.minLead_us, 2 * rtt + this.options.leadMargin_us);
   }
 
-  /** A frame unacknowledged for this long (µs) holds all timing back: the delay plus 1 ms. */
+  /** A frame unacknowledged for this long (µs) holds all timing back: a high round trip plus 1 ms. */
   get stallLimit_us(): number {
-    return Math.max(3_000, this.worstDelay_us() + 1_000);
+    let rtt = 0;
+    for (const d of this.devices) rtt = Math.max(rtt, d.binding.session.clock.rttHigh || 0);
+    return Math.max(3_000, rtt + 1_000);
   }
 
-  /** µs from now to the start of a segment after rest: the slowest device's delay plus a margin. */
+  /** µs from now to the start of a segment after rest: one RTT (the slowest device's worst) plus a margin. */
   get startLead_us(): number {
-    return this.worstDelay_us() + this.options.startMargin_us;
+    let rtt = 0;
+    for (const d of this.devices) rtt = Math.max(rtt, d.binding.session.clock.rttHigh || 0);
+    return rtt + this.options.startMargin_us;
   }
 
   start(): void {

@@ -14,6 +14,14 @@ import { runAndCheckPositions, runJob, startMachine, type Bench } from './harnes
 
 /** The board behind a 250 000 baud UART: 25 bytes per ms. */
 const UART = { blot: UNO_UART_LINK };
+/**
+ * Streamer margins for a UART. The defaults (0.7 ms to start, 2.5 ms over 2·RTT
+ * of lead) are sized for USB; on 25 kB/s a run's first GEOMETRY and TIMING frames
+ * (~130 bytes) take ~5 ms, and every frame waits behind the ones before it. With
+ * a 12 ms lead margin a motor fell 0.05 step outside its bound; 20 ms holds. (The
+ * workbench gives real boards 80 ms.)
+ */
+const UART_STREAMER = { startMargin_us: 6_000, leadMargin_us: 20_000 };
 
 /** An Archimedean spiral from the middle of the bed, a point every 0.1 mm, `turns` turns. */
 function spiral(turns: number): Move[] {
@@ -29,7 +37,12 @@ function spiral(turns: number): Move[] {
 }
 
 async function start(options: { linkFeedLimit?: boolean; uart?: boolean }): Promise<Bench> {
-  const b = await startMachine(blotPlotter(), { seed: 5, sim: options.uart === false ? {} : { links: UART }, maxl: { linkFeedLimit: options.linkFeedLimit } });
+  const uart = options.uart !== false;
+  const b = await startMachine(blotPlotter(), {
+    seed: 5,
+    sim: uart ? { links: UART } : {},
+    maxl: { linkFeedLimit: options.linkFeedLimit, ...(uart ? { streamer: UART_STREAMER } : {}) },
+  });
   await runJob(b, [{ endPosition: [50, 50] }]);
   return b;
 }
