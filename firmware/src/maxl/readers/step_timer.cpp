@@ -247,19 +247,18 @@ static_assert(MAXL_STEP_MIN_TICKS <= 63, "adiw");
 }  // namespace
 }  // namespace maxl_fw
 
+// The registers the fast path uses, and SREG (through r24), saved and restored.
+#define MAXL_STEP_ISR_SAVE \
+  "push r24\n\tin   r24, __SREG__\n\tpush r24\n\tpush r25\n\tpush r26\n\tpush r27\n\tpush r30\n\tpush r31\n\t"
+#define MAXL_STEP_ISR_RESTORE \
+  "pop  r31\n\tpop  r30\n\tpop  r27\n\tpop  r26\n\tpop  r25\n\tpop  r24\n\tout  __SREG__, r24\n\tpop  r24\n\t"
+
 extern "C" void __vector_maxl_step_slow(void) __attribute__((signal, used, externally_visible));
 void __vector_maxl_step_slow(void) { maxl_fw::serviceAll(); }
 
 ISR(TIMER1_COMPB_vect, ISR_NAKED) {
   __asm__ __volatile__(
-      "push r24\n\t"
-      "in   r24, __SREG__\n\t"
-      "push r24\n\t"
-      "push r25\n\t"
-      "push r26\n\t"
-      "push r27\n\t"
-      "push r30\n\t"
-      "push r31\n\t"
+      MAXL_STEP_ISR_SAVE
       // one channel, Z = it
       "lds  r24, %[channels]\n\t"
       "cpi  r24, 1\n\t"
@@ -281,14 +280,7 @@ ISR(TIMER1_COMPB_vect, ISR_NAKED) {
       "brpl 2f\n\t"
       // everything else (here, within reach of the branches above)
       "9:\n\t"
-      "pop  r31\n\t"
-      "pop  r30\n\t"
-      "pop  r27\n\t"
-      "pop  r26\n\t"
-      "pop  r25\n\t"
-      "pop  r24\n\t"
-      "out  __SREG__, r24\n\t"
-      "pop  r24\n\t"
+      MAXL_STEP_ISR_RESTORE
       "jmp  __vector_maxl_step_slow\n\t"
       "2:\n\t"
       // STEP high
@@ -340,14 +332,7 @@ ISR(TIMER1_COMPB_vect, ISR_NAKED) {
       "com  r25\n\t"
       "and  r24, r25\n\t"
       "st   X, r24\n\t"
-      "pop  r31\n\t"
-      "pop  r30\n\t"
-      "pop  r27\n\t"
-      "pop  r26\n\t"
-      "pop  r25\n\t"
-      "pop  r24\n\t"
-      "out  __SREG__, r24\n\t"
-      "pop  r24\n\t"
+      MAXL_STEP_ISR_RESTORE
       "reti\n\t"
       :
       : [channels] "i"(&maxl_fw::StepTimer::count_), [channel0] "i"(&maxl_fw::StepTimer::channels_[0]),
