@@ -22,14 +22,6 @@ msg::TimingSegment cruise(uint32_t us) {
   return t;
 }
 
-msg::Status lastStatus(Harness& h) {
-  msg::Status s{};
-  bool found = false;
-  for (auto& p : h.take())
-    if (p.type == type::STATUS) found = msg::parse(p.payload.data(), (uint8_t)p.payload.size(), s);
-  EXPECT_TRUE(found);
-  return s;
-}
 }  // namespace
 
 TEST(Braking, StarvedReaderBrakesAlongProvisionalGeometryAndHolds) {
@@ -64,7 +56,7 @@ TEST(Braking, StarvedReaderBrakesAlongProvisionalGeometryAndHolds) {
   EXPECT_TRUE(h.device->statusFlags() & status_flag::STARVED);
   // The STATUS names the segment and σ where it stopped: id 3, σ = 1/2.
   h.send(h.author.statusRequest());
-  msg::Status s = lastStatus(h);
+  msg::Status s = h.lastStatus();
   EXPECT_EQ(s.state, state::STOPPED);
   EXPECT_EQ(s.segmentId, 3);
   EXPECT_NEAR(s.sigma, 0.5, 1e-5);

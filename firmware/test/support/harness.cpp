@@ -39,6 +39,15 @@ std::vector<Packet> decodeFrames(const uint8_t* bytes, size_t n) {
   return out;
 }
 
+maxl_fw::msg::Status Harness::lastStatus() {
+  maxl_fw::msg::Status s{};
+  bool found = false;
+  for (auto& p : take())
+    if (p.type == maxl_fw::type::STATUS) found = maxl_fw::msg::parse(p.payload.data(), (uint8_t)p.payload.size(), s);
+  EXPECT_TRUE(found);
+  return s;
+}
+
 std::vector<Packet> Harness::take() {
   std::vector<Packet> out = decodeFrames(maxl_fw::host::tx(), maxl_fw::host::txLength());
   maxl_fw::host::clearTx();

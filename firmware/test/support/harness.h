@@ -47,6 +47,9 @@ class Harness {
   std::vector<Answer> answers();
   // Sends a frame and returns its single answer (fails the test otherwise).
   Answer exchange(const Bytes& frame);
+  // The last STATUS among what the device sent since the last take() (fails
+  // the test if there is none).
+  maxl_fw::msg::Status lastStatus();
 
   // HELLO_REQUEST then SUBSCRIBEs; expects every answer to be an ACK.
   void open(const std::vector<std::vector<uint8_t>>& subscriptions);
