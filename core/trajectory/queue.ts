@@ -101,11 +101,6 @@ export class TrajectoryQueue {
     this.minSegmentDuration_s = seconds;
   }
 
-  /** The floor on new segments' durations, s (0: none). */
-  get minSegmentDuration(): number {
-    return this.minSegmentDuration_s;
-  }
-
   // --- reading ---
 
   /** Live segments in path order (a copy). */
