@@ -15,7 +15,8 @@ export type {
   TrackInfo,
   TrackKind,
 } from './config/types.ts';
-export type { Move } from './trajectory/moves.ts';
+export type { Move, LinearMove, DwellMove } from './trajectory/moves.ts';
+export { isDwell } from './trajectory/moves.ts';
 export type { MoveEvents, EvaluatorState, EventEvaluatorSpec, EventTrack } from './trajectory/events.ts';
 export { TrajectoryQueue, type MoveReceipt, type QueueEvent, type QueueListener } from './trajectory/queue.ts';
 export { Segment, type SegmentState } from './trajectory/segment.ts';

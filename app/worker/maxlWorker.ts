@@ -8,7 +8,7 @@ import { Workbench } from './workbench.ts';
 
 const scope = self as unknown as DedicatedWorkerGlobalScope;
 
-const workbench = new Workbench((e: WorkerEvent) => scope.postMessage(e, transferablesOf(e)));
+const workbench = new Workbench((e: WorkerEvent, transfer?: Transferable[]) => scope.postMessage(e, transfer ?? transferablesOf(e)));
 
 scope.onmessage = (message: MessageEvent<Command>) => {
   try {

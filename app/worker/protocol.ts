@@ -200,9 +200,18 @@ export interface Snapshot {
 }
 
 // ---------------------------------------------------------------------------
+// The tools (app/tools/<name>/protocol.ts): each command and event carries `tool`.
+
+/** Every tool's commands. */
+export type ToolCommand = never;
+/** Every tool's events. */
+export type ToolEvent = never;
+
+// ---------------------------------------------------------------------------
 // main → worker
 
 export type Command =
+  | ToolCommand
   | { type: 'use-preset'; presetId: string; config?: MachineConfig }
   | {
       type: 'add-port';
@@ -233,6 +242,7 @@ export type Command =
 // worker → main
 
 export type WorkerEvent =
+  | ToolEvent
   | Snapshot
   | { type: 'machine'; state: MachineState }
   | { type: 'config-check'; check: ConfigCheck }

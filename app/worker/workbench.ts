@@ -24,12 +24,15 @@ import type {
   MachineState,
   ReaderKindName,
   Snapshot,
+  ToolCommand,
   WorkerEvent,
 } from './protocol.ts';
 import { SharedPort } from './sharedPort.ts';
 import { decimate, overviewTolerance } from './previewDecimation.ts';
 import { presetConfig, presetViews, startSimulatedMachine, truthOf } from './simulatedMachines.ts';
 import { SnapshotBuilder } from './snapshotBuilder.ts';
+import type { ToolContext, WorkbenchTool } from './toolContext.ts';
+import { createTools } from './tools.ts';
 
 interface DeviceConnection {
   id: string;
@@ -81,8 +84,11 @@ export class Workbench {
   private readonly snapshots = new SnapshotBuilder();
   private readonly jobs: JobRunner;
   private readonly jog: JogController;
+  private readonly tools: Map<string, WorkbenchTool<ToolCommand>>;
+  /** The tool that holds the machine for its motion, if any (ToolContext.claim). */
+  private toolOwner: string | null = null;
 
-  constructor(private readonly post: (e: WorkerEvent) => void) {
+  constructor(private readonly post: (e: WorkerEvent, transfer?: Transferable[]) => void) {
     this.jobs = new JobRunner({
       log: (level, code, message) => this.log(level, code, message),
       preview: (name, points, segments) => {
@@ -96,12 +102,22 @@ export class Workbench {
       report: (report) => this.post({ type: 'jog-stopped', report }),
     });
     this.snapshots.onHistorical = (seg) => this.jobs.onHistorical(seg);
+    this.tools = createTools(this.toolContext());
   }
 
   handle(cmd: Command): void {
+    if ('tool' in cmd) {
+      const toolCmd = cmd as ToolCommand;
+      const name = (toolCmd as { tool: string }).tool;
+      const tool = this.tools.get(name);
+      if (tool) tool.handle(toolCmd);
+      else this.log('error', 'WORKER', `There is no tool "${name}".`);
+      return;
+    }
     switch (cmd.type) {
       case 'frame':
         this.post(this.snapshot());
+        for (const tool of this.tools.values()) tool.frame();
         return;
       case 'use-preset':
         void this.usePreset(cmd.presetId, cmd.config);
@@ -275,6 +291,7 @@ export class Workbench {
     }
     this.maxl = maxl;
     this.snapshots.attach(maxl);
+    for (const tool of this.tools.values()) tool.authorChanged(maxl);
     maxl.on((e) => this.onRuntime(e, runtimeId));
     try {
       await maxl.begin();
@@ -325,6 +342,8 @@ export class Workbench {
     this.maxl = null;
     this.jobs.abort('the machine was reconfigured');
     this.jog.reset();
+    this.toolOwner = null;
+    for (const tool of this.tools.values()) tool.authorChanged(null);
     this.snapshots.attach(null);
     // After STOP or a lost link the devices report where they stopped ('stopped'); otherwise the plan knows.
     if (this.phase === 'ready') this.position = [...maxl.estimate().position];
@@ -358,6 +377,58 @@ export class Workbench {
       this.log('warning', 'JOB_BUSY', 'Cannot jog while a job runs: pause or cancel it first.');
       return false;
     }
+    if (this.toolOwner) {
+      this.log('warning', 'TOOL_BUSY', `Cannot jog while the ${this.toolOwner} tool moves the machine.`);
+      return false;
+    }
+    return true;
+  }
+
+  /** The machine as the tools see it (toolContext.ts). */
+  private toolContext(): ToolContext {
+    const wb = this;
+    return {
+      get maxl() {
+        return wb.maxl;
+      },
+      get phase() {
+        return wb.phase;
+      },
+      get sim() {
+        return wb.sim;
+      },
+      get presetId() {
+        return wb.presetId;
+      },
+      get config() {
+        return wb.config;
+      },
+      get origin() {
+        return wb.origin;
+      },
+      get scheduler() {
+        return wb.scheduler;
+      },
+      claim: (owner, what) => this.claimForTool(owner, what),
+      release: (owner) => {
+        if (this.toolOwner === owner) this.toolOwner = null;
+      },
+      log: (level, code, message) => this.log(level, code, message),
+      post: (e, transfer) => this.post(e, transfer),
+    };
+  }
+
+  private claimForTool(owner: string, what: string): boolean {
+    let why = '';
+    if (!this.maxl || this.phase !== 'ready') why = `the machine is ${this.phase}${this.problem ? ` (${this.problem.split('\n')[0]})` : ''}`;
+    else if (this.jobs.active) why = 'a job runs: pause or cancel it first';
+    else if (this.jog.isHolding) why = 'a jog is held';
+    else if (this.toolOwner && this.toolOwner !== owner) why = `the ${this.toolOwner} tool moves the machine`;
+    if (why) {
+      this.log('warning', this.phase === 'ready' ? 'MACHINE_BUSY' : 'NOT_READY', `Cannot ${what}: ${why}.`);
+      return false;
+    }
+    this.toolOwner = owner;
     return true;
   }
 
@@ -367,6 +438,10 @@ export class Workbench {
       return;
     }
     if (this.jog.isHolding) return;
+    if (this.toolOwner) {
+      this.log('warning', 'TOOL_BUSY', `Cannot start “${request.name}” while the ${this.toolOwner} tool moves the machine.`);
+      return;
+    }
     this.jobs.start(request, this.maxl, this.origin);
   }
 
@@ -375,6 +450,8 @@ export class Workbench {
     const maxl = this.maxl;
     this.jog.reset();
     this.jobs.halted();
+    this.toolOwner = null;
+    for (const tool of this.tools.values()) tool.stopped();
     if (!maxl || this.phase !== 'ready') {
       this.log('warning', 'STOP', 'STOP: nothing was streaming.');
       return;

@@ -12,12 +12,27 @@ import { resolveMoveEvents, type MoveEvents, type ResolvedEventSpec } from './ev
 import { Segment } from './segment.ts';
 import { actuatorPosition, subdivisionFractions } from './transforms.ts';
 
-export interface Move {
+export interface LinearMove {
   /** mm: one value per motion axis, or an object naming only the axes that move. */
   endPosition: number[] | Record<string, number>;
   /** mm/s cap on the speed along this move. Defaults to the machine limits. */
   maxVelocity?: number;
   eventChannels?: MoveEvents;
+}
+
+/**
+ * A dwell: the machine holds its position at rest for `dwell_s` seconds, and its
+ * events are set at the dwell's start. A dwell of 0 s is an event-only move.
+ */
+export interface DwellMove {
+  dwell_s: number;
+  eventChannels?: MoveEvents;
+}
+
+export type Move = LinearMove | DwellMove;
+
+export function isDwell(move: Move): move is DwellMove {
+  return move !== null && typeof move === 'object' && 'dwell_s' in move;
 }
 
 /**
@@ -62,6 +77,7 @@ function finite(field: string, value: unknown): number {
  */
 export function validateMove(config: ResolvedConfig, move: Move, from: readonly number[]): ValidatedMove {
   if (move === null || typeof move !== 'object') throw new MaxlError('MOVE_INVALID', 'a move must be an object with an endPosition');
+  if (isDwell(move)) throw new MaxlError('MOVE_INVALID', 'dwells are not carried yet', 'dwell_s');
   const axes = config.motionAxes;
   const target = move.endPosition;
   let end: number[];
