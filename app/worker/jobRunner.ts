@@ -7,7 +7,7 @@
  * fast path), so a cancel or a STOP between two moves is never overtaken by a
  * move that was waiting for room.
  */
-import type { Maxl, Segment } from '../../core/index.ts';
+import { isDwell, type Maxl, type Move, type Segment } from '../../core/index.ts';
 import { errorWords } from './errorWords.ts';
 import { patternPoints } from './jobPatterns.ts';
 import type { JobPhase, JobProgress, JobRequest, LogLevel } from './protocol.ts';
@@ -19,13 +19,26 @@ export interface JobHost {
   preview(name: string, points: Float32Array, segments: number): void;
 }
 
+/**
+ * A job that a tool built in the worker: any moves (dwells and events too), with
+ * the planner's own duration for its ETA when the tool knows it.
+ */
+export interface MoveJob {
+  name: string;
+  moves: readonly Move[];
+  /** s, the plan's duration (planPath), for the ETA; else the ETA follows the speed so far. */
+  planned_s?: number;
+}
+
 interface Run {
   name: string;
   maxl: Maxl;
-  points: Float64Array;
-  axes: number;
+  /** The i-th move to hand to the queue. */
+  moveAt: (i: number) => Move;
   count: number;
+  /** mm/s: the ETA's rate until 0.2 s of motion have run. */
   maxVelocity: number;
+  planned_s: number;
   phase: JobPhase;
   /** No more moves are fed once set (cancel, STOP, a failure). */
   stopped: boolean;
@@ -64,6 +77,7 @@ export class JobRunner {
     const remaining = Math.max(0, r.totalLength - r.doneLength);
     const rate = r.motion_s > 0.2 ? r.doneLength / r.motion_s : r.maxVelocity;
     const finished = r.phase === 'done' || r.phase === 'cancelled' || r.phase === 'halted' || r.phase === 'failed';
+    const eta_s = finished ? 0 : r.planned_s > 0 ? Math.max(0, r.planned_s - r.motion_s) : rate > 0 ? remaining / rate : NaN;
     return {
       name: r.name,
       phase: r.phase,
@@ -71,7 +85,7 @@ export class JobRunner {
       doneSegments: Math.min(r.count, doneSegments),
       totalLength: r.totalLength,
       doneLength: Math.min(r.totalLength, r.doneLength),
-      eta_s: finished ? 0 : rate > 0 ? remaining / rate : NaN,
+      eta_s,
       elapsed_s: r.motion_s,
     };
   }
@@ -97,24 +111,80 @@ export class JobRunner {
       return;
     }
     const start = maxl.nextMoveStart;
+    const maxVelocity = request.maxVelocity;
+    this.begin(
+      {
+        name: request.name,
+        maxl,
+        moveAt: (i) => ({ endPosition: Array.from(points.subarray(i * axes, i * axes + axes)), maxVelocity }),
+        count,
+        maxVelocity,
+        planned_s: 0,
+        totalLength: pathLength(start, points, axes),
+      },
+      previewVertices(start, points, axes),
+      `${count.toLocaleString('en')} segments`,
+    );
+  }
+
+  /**
+   * Starts a tool's job. Every linear move is checked against the soft limits
+   * first: a job that leaves them does not start at all. False if it did not start.
+   */
+  startMoves(job: MoveJob, maxl: Maxl): boolean {
+    if (this.active) {
+      this.host.log('warning', 'JOB_BUSY', `“${this.run?.name}” is still running: cancel it first, or wait until it ends.`);
+      return false;
+    }
+    const start = maxl.nextMoveStart;
+    const path = resolvePath(job.moves, maxl.config.motionAxes, start);
+    if (typeof path === 'string') {
+      this.host.log('error', 'JOB_INVALID', `“${job.name}”: ${path}`);
+      return false;
+    }
+    const axes = start.length;
+    const outside = firstOutside(path, axes, maxl.config.softMin, maxl.config.softMax);
+    if (outside >= 0) {
+      const p = Array.from(path.subarray(outside * axes, outside * axes + axes), (v) => v.toFixed(2)).join(', ');
+      this.host.log('error', 'SOFT_LIMIT', `“${job.name}” leaves the soft limits at ${p} mm: fit it to the bed, or move it.`);
+      return false;
+    }
+    const linear = job.moves.filter((m) => !isDwell(m)).length;
+    let fastest = 0;
+    for (const m of job.moves) if (!isDwell(m) && m.maxVelocity !== undefined) fastest = Math.max(fastest, m.maxVelocity);
+    this.begin(
+      {
+        name: job.name,
+        maxl,
+        moveAt: (i) => job.moves[i],
+        count: job.moves.length,
+        maxVelocity: fastest || Infinity,
+        planned_s: job.planned_s ?? 0,
+        totalLength: pathLength(start, path, axes),
+      },
+      previewVertices(start, path, axes),
+      `${linear.toLocaleString('en')} moves${job.planned_s ? `, ${job.planned_s.toFixed(1)} s planned` : ''}`,
+    );
+    return true;
+  }
+
+  private begin(
+    r: Pick<Run, 'name' | 'maxl' | 'moveAt' | 'count' | 'maxVelocity' | 'planned_s' | 'totalLength'>,
+    preview: Float32Array,
+    summary: string,
+  ): void {
     this.run = {
-      name: request.name,
-      maxl,
-      points,
-      axes,
-      count,
-      maxVelocity: request.maxVelocity,
+      ...r,
       phase: 'loading',
       stopped: false,
       fed: 0,
       firstMoveId: 0,
       lastDoneMoveId: 0,
-      totalLength: pathLength(start, points, axes),
       doneLength: 0,
       motion_s: 0,
     };
-    this.host.preview(request.name, previewVertices(start, points, axes), count);
-    this.host.log('info', 'JOB', `“${request.name}”: ${count.toLocaleString('en')} segments, ${this.run.totalLength.toFixed(0)} mm.`);
+    this.host.preview(r.name, preview, preview.length / 3 - 1);
+    this.host.log('info', 'JOB', `“${r.name}”: ${summary}, ${r.totalLength.toFixed(0)} mm.`);
     const run = this.run;
     run.phase = 'running';
     void this.feed(run).catch((err) => this.fail(run, err));
@@ -181,14 +251,13 @@ export class JobRunner {
   }
 
   private async feed(r: Run): Promise<void> {
-    const { maxl, points, axes } = r;
+    const { maxl } = r;
     const queue = maxl.queue;
     let sliceStart = performance.now();
     for (let i = 0; i < r.count; i++) {
       while (!r.stopped && !queue.hasRoom()) await roomIn(maxl, r);
       if (r.stopped) return;
-      const endPosition = Array.from(points.subarray(i * axes, i * axes + axes));
-      const queued = maxl.addSegmentToQueue({ endPosition, maxVelocity: r.maxVelocity });
+      const queued = maxl.addSegmentToQueue(r.moveAt(i));
       r.fed = i + 1;
       if (i === 0) r.firstMoveId = (await queued).moveId;
       else queued.catch((err) => this.fail(r, err));
@@ -241,6 +310,32 @@ function roomIn(maxl: Maxl, r: Run): Promise<void> {
       resolve();
     }
   });
+}
+
+/**
+ * The positions a list of moves visits, n × axes (dwells add none), each end made
+ * whole from the position before it; or what is wrong, in words.
+ */
+function resolvePath(moves: readonly Move[], names: readonly string[], start: readonly number[]): Float64Array | string {
+  const out: number[] = [];
+  let at = [...start];
+  for (const m of moves) {
+    if (isDwell(m)) continue;
+    const end = m.endPosition;
+    if (Array.isArray(end)) {
+      if (end.length !== names.length) return `a move has ${end.length} positions but the machine has ${names.length} axes`;
+      at = [...end];
+    } else {
+      at = [...at];
+      for (const [axis, v] of Object.entries(end)) {
+        const a = names.indexOf(axis);
+        if (a < 0) return `"${axis}" is not a motion axis (${names.join(', ')})`;
+        at[a] = v;
+      }
+    }
+    out.push(...at);
+  }
+  return Float64Array.from(out);
 }
 
 function firstOutside(points: Float64Array, axes: number, min: readonly number[], max: readonly number[]): number {

@@ -9,6 +9,7 @@
  */
 import type { Maxl, Scheduler } from '../../core/index.ts';
 import type { SimulatedMachine } from '../../core/sim/machine.ts';
+import type { MoveJob } from './jobRunner.ts';
 import type { LogLevel, MachineConfig, MachinePhase, WorkerEvent } from './protocol.ts';
 
 export interface ToolContext {
@@ -30,6 +31,12 @@ export interface ToolContext {
   claim(owner: string, what: string): boolean;
   /** Gives the machine back (no-op if `owner` does not hold it). */
   release(owner: string): void;
+  /**
+   * Runs a tool's moves as a job: the job panel shows its progress and ETA, and
+   * pauses, resumes and cancels it. False (with the reason in the log) if it did
+   * not start: the machine is not ready or busy, or a move leaves the soft limits.
+   */
+  startJob(job: MoveJob): boolean;
   log(level: LogLevel, code: string, message: string): void;
   post(e: WorkerEvent, transfer?: Transferable[]): void;
 }

@@ -413,6 +413,11 @@ export class Workbench {
       release: (owner) => {
         if (this.toolOwner === owner) this.toolOwner = null;
       },
+      startJob: (job) => {
+        if (!this.claimForTool('job', `start “${job.name}”`)) return false;
+        this.toolOwner = null;
+        return this.jobs.startMoves(job, this.maxl as Maxl);
+      },
       log: (level, code, message) => this.log(level, code, message),
       post: (e, transfer) => this.post(e, transfer),
     };
