@@ -3,7 +3,7 @@
  * see the core refuse it, fix it; and the configuration is kept in localStorage and
  * exported and imported as JSON.
  */
-import { expect, test } from '@playwright/test';
+import { expect, test } from './support/test.ts';
 import { readFileSync } from 'node:fs';
 import { openWorkbench, screenshot } from './support/workbench.ts';
 

@@ -3,7 +3,7 @@
  * the path and stays), resume (it goes on), cancel (it stops on the path, the rest
  * is dropped).
  */
-import { expect, test } from '@playwright/test';
+import { expect, test } from './support/test.ts';
 import { dataNumber, openWorkbench, screenshot, startJob, snapshotsPass, waitAtRest } from './support/workbench.ts';
 
 test('a small job: progress, pause, resume, cancel', async ({ page }) => {

@@ -3,7 +3,8 @@
  * step exactly; holding streams motion until release, and the release's stop is
  * measured; set origin and go to origin.
  */
-import { expect, test, type Page } from '@playwright/test';
+import type { Page } from '@playwright/test';
+import { expect, test } from './support/test.ts';
 import { dataNumber, openWorkbench, screenshot, snapshotsPass, waitAtRest } from './support/workbench.ts';
 
 async function viewTool(page: Page): Promise<{ x: number; y: number }> {

@@ -3,7 +3,8 @@
  * step counts stop changing), the job is over, and Re-arm makes the machine ready
  * again where it stopped.
  */
-import { expect, test, type Page } from '@playwright/test';
+import type { Page } from '@playwright/test';
+import { expect, test } from './support/test.ts';
 import { dataNumber, openWorkbench, screenshot, startJob, snapshotsPass } from './support/workbench.ts';
 
 async function motorSteps(page: Page): Promise<Record<string, number>> {

@@ -5,7 +5,8 @@
  * transferred to the worker; granted ports reconnect on reload through getPorts().
  * A jog then moves the simulated motors behind the fake ports.
  */
-import { expect, test, type Page } from '@playwright/test';
+import type { Page } from '@playwright/test';
+import { expect, test } from './support/test.ts';
 import path from 'node:path';
 import { screenshot } from './support/workbench.ts';
 
@@ -36,7 +37,6 @@ async function motorSteps(page: Page): Promise<Record<string, number>> {
 }
 
 test('Add device runs the real WebSerial connect code against a fake navigator.serial', async ({ page }) => {
-  page.on('pageerror', (e) => console.log(`[page error] ${e.message}`));
   await installFake(page);
   await page.goto('/');
   // No port is granted yet: the default simulated machine opens in the worker.

@@ -2,10 +2,12 @@
 // `npm run bench -- NAME`: runs bench/NAME.ts (through tsx) or bench/NAME.mjs.
 // Each benchmark prints its figures as one JSON object on the last line of its output.
 import { spawnSync } from 'node:child_process';
+import { requireNode } from './require-node.mjs';
 import { existsSync, readdirSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import path from 'node:path';
 
+requireNode();
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const name = process.argv[2];
 const available = readdirSync(path.join(root, 'bench'))

@@ -3,7 +3,7 @@ export const suites = [
   {
     name: 'typecheck',
     describe: 'TypeScript (strict) and Svelte type checks',
-    command: ['npx', 'svelte-check', '--tsconfig', './tsconfig.json', '--threshold', 'error'],
+    command: ['npm', 'run', '--silent', 'typecheck'],
   },
   {
     name: 'unit',
@@ -21,19 +21,26 @@ export const suites = [
     name: 'firmware-avr',
     describe: 'firmware: every example built for the Arduino Uno (arduino-mk); flash/RAM table, fails under 25 % free RAM',
     command: ['bash', 'scripts/firmware-avr.sh'],
-    tools: ['avr-gcc', 'avr-size', 'make', '/usr/share/arduino/Arduino.mk', '/usr/share/arduino/hardware/arduino/avr/cores/arduino/Arduino.h'],
+    tools: [
+      'avr-gcc', 'avr-size', 'make', 'gcc', 'g++', 'simavr',
+      '/usr/share/arduino/Arduino.mk', '/usr/share/arduino/hardware/arduino/avr/cores/arduino/Arduino.h',
+      '/usr/include/simavr/sim_avr.h',
+    ],
   },
   {
     name: 'firmware-wasm',
     describe: 'firmware: every example rebuilt to wasm32, byte-identical to public/firmware/*.wasm, instantiated in Node',
     command: ['bash', 'scripts/firmware-wasm.sh', '--check'],
-    tools: ['clang++', 'wasm-ld', 'node', '/usr/lib/wasm32-wasi/libc.a', '/usr/lib/wasm32-wasi/libc++.a'],
+    tools: [
+      'clang++', 'wasm-ld', 'node', '/usr/lib/wasm32-wasi/libc.a', '/usr/lib/wasm32-wasi/libc++.a',
+      '/usr/lib/llvm-14/lib/clang/*/lib/wasi/libclang_rt.builtins-wasm32.a',
+    ],
   },
   {
     name: 'firmware-fuzz',
     describe: 'firmware: libFuzzer (ASan+UBSan) over the frame receiver and every handler, 25 s from the seed corpus',
     command: ['bash', 'scripts/firmware-fuzz.sh', '25'],
-    tools: ['clang++'],
+    tools: ['clang++', '/usr/lib/llvm-14/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a'],
   },
   {
     name: 'e2e',

@@ -8,11 +8,16 @@ import { existsSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import path from 'node:path';
 import { suites } from './test-suites.mjs';
+import { requireNode } from './require-node.mjs';
+
+requireNode();
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 process.chdir(root);
 
+/** A command on the PATH, or a file (a path; `*` matches one folder name, as in a shell). */
 function have(tool) {
+  if (tool.includes('*')) return spawnSync('sh', ['-c', `ls ${tool}`], { stdio: 'ignore' }).status === 0;
   if (tool.startsWith('/')) return existsSync(tool);
   return spawnSync('sh', ['-c', `command -v ${tool}`], { stdio: 'ignore' }).status === 0;
 }

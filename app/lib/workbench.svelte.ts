@@ -5,6 +5,7 @@
  */
 import { WorkerClient } from './workerClient.ts';
 import { BOARDS, lastMachine, saveConfig, savedConfig } from './configStorage.ts';
+import { configProblems } from './configProblems.ts';
 import { connectErrorWords, openPort, serialSupport, type SerialPortLike, type SerialSupport } from './serialConnect.ts';
 import {
   DEFAULT_PRESET,
@@ -117,6 +118,12 @@ export class WorkbenchStore {
 
   usePreset(presetId: string, config: MachineConfig | undefined = savedConfig(presetId)): void {
     this.previewSegments = 0;
+    const problems = config ? configProblems(config) : [];
+    if (problems.length > 0) {
+      // Saved by an older version, or edited by hand: never load what Apply would refuse.
+      this.note('warning', 'CONFIG', `The saved configuration of ${presetId} is not valid (${problems[0].field}: ${problems[0].message}); using the preset's own.`);
+      config = undefined;
+    }
     this.send({ type: 'use-preset', presetId, config });
   }
 

@@ -128,11 +128,19 @@ export class Workbench {
       case 'remove-device':
         void this.removeDevice(cmd.id);
         return;
-      case 'set-config':
+      case 'set-config': {
+        // The page refuses to apply an invalid config; this is the last guard, so a
+        // bad config never replaces a good one (nor gets saved).
+        const problem = checkConfig(cmd.config, [], 0).error;
+        if (problem) {
+          this.log('error', 'CONFIG_INVALID', `The configuration was not applied: ${problem.message}`);
+          return;
+        }
         this.config = cmd.config;
         this.publish();
         void this.restart();
         return;
+      }
       case 'check-config':
         this.post({ type: 'config-check', check: checkConfig(cmd.config, this.knownDevices(), cmd.requestId) });
         return;

@@ -73,7 +73,7 @@ export function bindSubscriptions(config: ResolvedConfig, devices: DeviceInfo[])
       mismatches.push({
         ...base,
         problem: 'wrong kind',
-        message: `subscriptions[${i}]: "${sub.device}"/"${sub.reader}" is a ${reader.kind} reader, but track "${sub.track}" is a${track.kind === 'event' || track.kind === 'acceleration' ? 'n' : ''} ${track.kind} track: it needs a ${wanted} reader`,
+        message: `subscriptions[${i}]: "${sub.device}"/"${sub.reader}" is ${withArticle(reader.kind)} reader, but track "${sub.track}" is ${withArticle(track.kind)} track: it needs ${withArticle(wanted)} reader`,
       });
       return;
     }
@@ -103,4 +103,9 @@ export function bindSubscriptions(config: ResolvedConfig, devices: DeviceInfo[])
     }
   }
   return { plans: [...plans.values()], mismatches };
+}
+
+/** "an event", "a position": the indefinite article for a kind's name. */
+function withArticle(word: string): string {
+  return `${/^[aeiou]/i.test(word) ? 'an' : 'a'} ${word}`;
 }

@@ -9,7 +9,6 @@ export const SCREENSHOTS = 'test-results/screenshots';
 
 /** Opens the page with empty storage (so the default machine opens) and waits until it streams. */
 export async function openWorkbench(page: Page, path = '/'): Promise<void> {
-  page.on('pageerror', (e) => console.log(`[page error] ${e.message}`));
   await page.goto(path);
   await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
 }
