@@ -17,11 +17,21 @@ test('a small job: progress, pause, resume, cancel', async ({ page }) => {
   await expect(page.getByTestId('legend')).toHaveAttribute('data-preview', '400');
   await expect.poll(() => dataNumber(page, 'job-progress', 'data-done'), { timeout: 30_000 }).toBeGreaterThan(40);
   await expect(page.getByTestId('job-eta')).toHaveText(/ETA \d+ (s|min)/);
+  // The header says what the machine does, and the bar draws what the text says.
+  await expect(page.getByTestId('phase')).toHaveText('running');
+  const [drawn, told] = await page.evaluate(() => {
+    const fill = document.querySelector('[data-testid=job-progress-fill]') as HTMLElement;
+    const bar = fill.parentElement as HTMLElement;
+    const fraction = Number(document.querySelector('[data-testid=job-progress]')?.getAttribute('data-fraction'));
+    return [fill.getBoundingClientRect().width / bar.getBoundingClientRect().width, fraction];
+  });
+  expect(Math.abs(drawn - told)).toBeLessThan(0.01);
   await screenshot(page, '06-job-running');
 
   // Pause: brakes to rest on the path and holds.
   await page.getByTestId('job-pause').click();
   await expect(progress).toHaveAttribute('data-phase', 'paused');
+  await expect(page.getByTestId('phase')).toHaveText('paused');
   const held = await waitAtRest(page, 15);
   const doneAtPause = await dataNumber(page, 'job-progress', 'data-done');
   await snapshotsPass(page, 30);
@@ -44,6 +54,7 @@ test('a small job: progress, pause, resume, cancel', async ({ page }) => {
   await snapshotsPass(page, 30);
   expect(await dataNumber(page, 'job-progress', 'data-done')).toBe(done);
   await expect(page.getByTestId('speed')).toHaveText('0.0 mm/s');
+  await expect(page.getByTestId('phase')).toHaveText('ready');
   await expect(page.locator('[data-testid=log-entry][data-code=JOB]').last()).toContainText('cancelled');
   // Nothing the machine refused along the way.
   await expect(page.locator('[data-testid=log-entry][data-code=DEVICE_REFUSED]')).toHaveCount(0);

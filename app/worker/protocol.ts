@@ -57,7 +57,8 @@ export type MachinePhase =
   | 'empty' //            no device
   | 'connecting' //       opening sessions, syncing clocks
   | 'ready' //            streaming: jogs and jobs run
-  | 'not-ready' //        the config or the subscriptions are wrong (see `problem`)
+  | 'not-ready' //        the config or the subscriptions are wrong, or a device was lost (see `problem`)
+  | 'stopped' //          a device braked to rest on the path by itself (the stream fell behind: see `problem`)
   | 'halted'; //          STOP was pressed: every device stopped where it was
 
 export interface MachineState {

@@ -72,6 +72,8 @@ export class Workbench {
   private runtimeId = 0;
   private phase: MachinePhase = 'empty';
   private problem = '';
+  /** The last error the runtime reported, in words: why a device stopped by itself. */
+  private lastError = '';
   private origin: number[] = [0, 0];
   /** Machine mm where the next author starts. */
   private position: number[] = [0, 0];
@@ -284,6 +286,7 @@ export class Workbench {
       return;
     }
     const runtimeId = ++this.runtimeId;
+    this.lastError = '';
     this.setPhase('connecting', '');
     const axes = this.config.motionAxes?.length ?? 0;
     if (this.position.length !== axes) this.position = new Array<number>(axes).fill(0);
@@ -363,6 +366,7 @@ export class Workbench {
     if (runtimeId !== this.runtimeId) return;
     if (e.type === 'error') {
       const words = errorWords(e.error);
+      this.lastError = words.message;
       this.log('error', words.code, words.message);
     } else if (e.type === 'device') {
       this.devicesChanged = true;
@@ -371,8 +375,18 @@ export class Workbench {
         this.jog.reset();
         if (this.phase === 'ready') this.setPhase('not-ready', `${e.device}: ${e.reason ?? e.state}. The machine brakes to rest on the path. Check the cable and power, then press Re-arm.`);
       }
-    } else if (e.type === 'stopped' && e.position) {
-      this.position = [...e.position];
+    } else if (e.type === 'stopped') {
+      if (e.position) this.position = [...e.position];
+      // A device braked to rest by itself (STOP sets 'halted' first): this author
+      // cannot stream on from there, so the machine waits for Re-arm.
+      if (this.phase === 'ready') {
+        this.jobs.abort(`${e.device} stopped on the path`);
+        this.jog.reset();
+        this.toolOwner = null;
+        for (const tool of this.tools.values()) tool.stopped();
+        const why = this.lastError ? ` (${this.lastError})` : '';
+        this.setPhase('stopped', `${e.device} braked to rest on the path${why}. Press Re-arm to continue from where it stopped.`);
+      }
     }
   }
 
