@@ -44,3 +44,16 @@ for (const how of ['button', 'Escape', 'Control+Shift+E'] as const) {
     await expect.poll(() => dataNumber(page, 'pos-x')).toBeCloseTo(x + 1, 6);
   });
 }
+
+test('Esc with the machine menu open closes the menu and stops, and says both', async ({ page }) => {
+  await openWorkbench(page);
+  await startJob(page, { pattern: 'zigzag', segments: 300, size: 60, speed: 60 });
+  await expect.poll(() => dataNumber(page, 'job-progress', 'data-done'), { timeout: 30_000 }).toBeGreaterThan(10);
+  await page.getByTestId('machine-menu').click();
+  await expect(page.getByRole('menu')).toBeVisible();
+
+  await page.keyboard.press('Escape');
+  await expect(page.getByRole('menu')).toHaveCount(0);
+  await expect(page.getByTestId('phase')).toHaveText('halted');
+  await expect(page.locator('[data-testid=log-entry][data-code=STOP]').filter({ hasText: 'closed the machine menu and stopped the machine' })).toHaveCount(1);
+});
