@@ -65,6 +65,19 @@ export class AppendOnlyPath {
     this.setRanges();
   }
 
+  /** The transmitted (locked, not yet run) segments' vertices: 2 × xyz each (a view). */
+  transmittedVertices(): Float32Array {
+    return (this.attribute.array as Float32Array).subarray(this.historical * 6, this.count * 6);
+  }
+
+  /** mm of path in the transmitted segments. */
+  transmittedLength(): number {
+    const v = this.transmittedVertices();
+    let total = 0;
+    for (let i = 0; i < v.length; i += 6) total += Math.hypot(v[i + 3] - v[i], v[i + 4] - v[i + 1], v[i + 5] - v[i + 2]);
+    return total;
+  }
+
   setHistorical(n: number): void {
     const h = Math.min(n, this.count);
     if (h === this.historical) return;

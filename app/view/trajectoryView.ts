@@ -89,8 +89,20 @@ export class TrajectoryView {
       historicalSegments: this.locked.historicalSegments,
       queueSegments: this.queue.count,
       previewSegments: this.preview.segments,
+      transmittedLength_mm: this.locked.transmittedLength(),
       renders: this.renders,
     };
+  }
+
+  /** Where the camera is and what it looks at, mm (for the page's tests and benches). */
+  get cameraPose(): { position: number[]; target: number[]; up: number[] } {
+    return { position: this.camera.position.toArray(), target: this.controls.target.toArray(), up: this.camera.up.toArray() };
+  }
+
+  /** The work area's bounds as drawn, mm: [x0, y0, x1, y1] (a rail has a small y extent). */
+  get workAreaBounds(): number[] {
+    const b = this.workArea.box;
+    return [b.min.x, b.min.y, b.max.x, b.max.y];
   }
 
   /** The work area (soft limits), mm, per motion axis; infinite sides fall back to the content. */
@@ -136,7 +148,10 @@ export class TrajectoryView {
 
   setMode(mode: CameraMode): void {
     this.mode = mode;
+    // The top view is a map: a drag pans it (it never tilts it edge-on); in 3D a drag orbits.
     this.controls.enableRotate = mode === '3d';
+    this.controls.mouseButtons.LEFT = mode === 'top' ? THREE.MOUSE.PAN : THREE.MOUSE.ROTATE;
+    this.controls.touches.ONE = mode === 'top' ? THREE.TOUCH.PAN : THREE.TOUCH.ROTATE;
     this.camera.up.set(0, mode === 'top' ? 1 : 0, mode === 'top' ? 0 : 1);
     this.fit();
   }
@@ -211,7 +226,7 @@ export class TrajectoryView {
   }
 
   private drawOverlay(): void {
-    this.overlay.draw(this.camera, this.toolPosition, this.originPosition, this.width, this.height);
+    this.overlay.draw(this.camera, this.toolPosition, this.originPosition, this.locked.transmittedVertices(), this.width, this.height);
   }
 
   dispose(): void {

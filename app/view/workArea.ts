@@ -17,6 +17,10 @@ export class WorkArea {
     }
     const pick = (v: number | undefined, fallback: number) => (v !== undefined && Number.isFinite(v) ? v : fallback);
     const x0 = pick(min[0], -DEFAULT_HALF_MM), x1 = pick(max[0], DEFAULT_HALF_MM);
+    if (min.length === 1) {
+      this.rail(x0, x1);
+      return;
+    }
     const y0 = min.length > 1 ? pick(min[1], -DEFAULT_HALF_MM) : -10, y1 = max.length > 1 ? pick(max[1], DEFAULT_HALF_MM) : 10;
     this.box.set(new THREE.Vector3(x0, y0, 0), new THREE.Vector3(x1, y1, 0));
     const span = Math.max(x1 - x0, y1 - y0);
@@ -27,6 +31,24 @@ export class WorkArea {
     this.group.add(lines(grid, SCENE_COLORS.grid));
     this.group.add(lines([x0, y0, 0, x1, y0, 0, x1, y0, 0, x1, y1, 0, x1, y1, 0, x0, y1, 0, x0, y1, 0, x0, y0, 0], SCENE_COLORS.gridCenter));
   }
+
+  private rail(x0: number, x1: number): void {
+    const { rail, ticks, half } = railLines(x0, x1);
+    this.box.set(new THREE.Vector3(x0, -half, 0), new THREE.Vector3(x1, half, 0));
+    this.group.add(lines(ticks, SCENE_COLORS.grid));
+    this.group.add(lines(rail, SCENE_COLORS.gridCenter));
+  }
+}
+
+/** A one-axis machine's travel: a rail along x with ticks, not a plane. */
+function railLines(x0: number, x1: number): { rail: number[]; ticks: number[]; half: number } {
+  const step = niceStep((x1 - x0) / 12);
+  const half = step / 4;
+  const ticks: number[] = [];
+  for (let x = Math.ceil(x0 / step) * step; x <= x1 + 1e-9; x += step) ticks.push(x, -half / 2, 0, x, half / 2, 0);
+  // The ends of travel, taller.
+  ticks.push(x0, -half, 0, x0, half, 0, x1, -half, 0, x1, half, 0);
+  return { rail: [x0, 0, 0, x1, 0, 0], ticks, half };
 }
 
 function lines(values: number[], color: string): THREE.LineSegments {

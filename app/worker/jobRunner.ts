@@ -241,6 +241,12 @@ export class JobRunner {
     this.host.log('error', 'JOB_FAILED', `“${r.name}” stopped: ${reason}`);
   }
 
+  /** Forgets the last job (another machine was chosen: its progress means nothing there). */
+  forget(): void {
+    if (this.active) this.abort('the machine was changed');
+    this.run = null;
+  }
+
   /** A segment finished (from the snapshot builder). */
   onHistorical(seg: Segment): void {
     const r = this.run;

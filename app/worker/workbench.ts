@@ -254,6 +254,7 @@ export class Workbench {
 
   private async closeDevices(): Promise<void> {
     await this.endAuthor();
+    this.jobs.forget();
     for (const d of this.devices) await d.port.close();
     this.devices = [];
     await this.sim?.stop();

@@ -1,0 +1,60 @@
+/**
+ * The view shows what a user needs: the locked (transmitted) path ahead of the
+ * tool is visible, a drag pans the top view (it never tilts it), a one-axis rig is
+ * a rail, and another machine does not show the last one's job.
+ */
+import type { Page } from '@playwright/test';
+import { expect, test } from './support/test.ts';
+import { dataNumber, openWorkbench, screenshot, startJob } from './support/workbench.ts';
+
+interface ViewHook {
+  maxlView: { cameraPose: { position: number[]; target: number[] }; workAreaBounds: number[] };
+}
+
+/** Pixels of the overlay drawn in the transmitted colour (#e69a1c), within a tolerance. */
+async function lockedPixels(page: Page): Promise<number> {
+  return page.evaluate(() => {
+    const overlay = document.querySelectorAll('canvas')[1] as HTMLCanvasElement;
+    const data = (overlay.getContext('2d') as CanvasRenderingContext2D).getImageData(0, 0, overlay.width, overlay.height).data;
+    let n = 0;
+    for (let i = 0; i < data.length; i += 4) {
+      if (Math.abs(data[i] - 0xe6) < 12 && Math.abs(data[i + 1] - 0x9a) < 12 && Math.abs(data[i + 2] - 0x1c) < 12 && data[i + 3] > 200) n++;
+    }
+    return n;
+  });
+}
+
+test('the locked path is visible; the top view pans; another machine drops the old job', async ({ page }) => {
+  await openWorkbench(page);
+  await startJob(page, { pattern: 'spiral', segments: 400, size: 60, speed: 40 });
+  await expect.poll(() => dataNumber(page, 'job-progress', 'data-done'), { timeout: 30_000 }).toBeGreaterThan(20);
+  // A wide orange path from the tool on (a few ms of motion: often shorter than the tool's ring), and its length in the legend.
+  await expect.poll(() => lockedPixels(page), { timeout: 10_000 }).toBeGreaterThan(20);
+  await expect.poll(() => dataNumber(page, 'legend-transmitted', 'data-mm')).toBeGreaterThan(0);
+  await expect(page.getByTestId('legend-transmitted')).toContainText('locked ahead');
+  await screenshot(page, '09-locked-path');
+
+  // Drag in the top view: the camera moves over the bed and still looks straight down.
+  const before = await page.evaluate(() => (window as unknown as ViewHook).maxlView.cameraPose);
+  const box = await page.getByTestId('view-canvas').boundingBox();
+  if (!box) throw new Error('no view');
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width / 2 + 120, box.y + box.height / 2 + 60, { steps: 8 });
+  await page.mouse.up();
+  const after = await page.evaluate(() => (window as unknown as ViewHook).maxlView.cameraPose);
+  expect(Math.hypot(after.target[0] - before.target[0], after.target[1] - before.target[1])).toBeGreaterThan(1);
+  expect(after.position[0]).toBeCloseTo(after.target[0], 6);
+  expect(after.position[1]).toBeCloseTo(after.target[1], 6);
+  expect(after.position[2] - after.target[2]).toBeCloseTo(before.position[2] - before.target[2], 6);
+
+  // Another machine: the one-axis rig. No trace of the last job; its travel is a rail.
+  await page.getByTestId('machine-menu').click();
+  await page.getByTestId('preset-accelRig').click();
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await expect(page.getByTestId('job-progress')).toHaveCount(0);
+  const [x0, y0, x1, y1] = await page.evaluate(() => (window as unknown as ViewHook).maxlView.workAreaBounds);
+  expect(x1 - x0).toBe(300);
+  expect(y1 - y0).toBeLessThan((x1 - x0) / 10);
+  await screenshot(page, '10-one-axis-rail');
+});
