@@ -12,6 +12,8 @@ const PORT = Number(process.env.E2E_PORT ?? 5174);
 
 export default defineConfig({
   testDir: 'e2e',
+  // The production build's specs run under their own config (playwright.built.config.ts).
+  testIgnore: ['built/**'],
   timeout: 90_000,
   expect: { timeout: 20_000 },
   fullyParallel: false,

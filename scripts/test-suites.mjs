@@ -49,4 +49,11 @@ export const suites = [
     env: { CI: '1' },
     tools: ['chromium'],
   },
+  {
+    name: 'e2e-built',
+    describe: 'Playwright on the production build under its Content-Security-Policy (vite build + vite preview): no violation',
+    command: ['npx', 'playwright', 'test', '-c', 'playwright.built.config.ts'],
+    env: { CI: '1' },
+    tools: ['chromium'],
+  },
 ];
