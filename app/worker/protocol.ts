@@ -1,6 +1,6 @@
 /**
  * The one typed message interface between the workbench's main thread and the
- * worker that runs the MAXL core (DESIGN.md decision 9).
+ * worker that runs the MAXL core (docs/design.md, decision 9).
  *
  *   main → worker   `Command`: what the user asked for (connect, configure, jog, jobs, stop)
  *   worker → main   `WorkerEvent`: the machine's state, log entries, and at most one

@@ -1,5 +1,5 @@
 /**
- * Clock synchronisation for one device (DESIGN.md decision 3): fit the device's
+ * Clock synchronisation for one device (docs/design.md, decision 3): fit the device's
  * free-running µs counter as a line in author time, D(a) = D₀ + r·(a − a₀), from
  * ping exchanges, and keep refitting it during the job.
  *

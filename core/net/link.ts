@@ -1,6 +1,6 @@
 /**
  * A link is a byte stream shaped like WebSerial's SerialPort once open: a
- * `readable` of Uint8Array chunks and a `writable` that accepts them (DESIGN.md
+ * `readable` of Uint8Array chunks and a `writable` that accepts them (docs/design.md
  * decision 6). WebSerial, web-serial-polyfill, Node's serialport and the simulator
  * all provide one; the runtime cannot tell them apart.
  */

@@ -456,7 +456,7 @@ export class DeviceSession {
         void this.send({ type: 'PING', pingId, replyAfter: Math.floor(random() * 2000) });
       }
       // Fast while the model is young (it converges with the number of exchanges),
-      // then at the session's pace: burstPingEvery_us for the first ten minutes, then pingEvery_us.
+      // then at the session's pace: burstPingEvery_us while the session is young (youngFor_us, two minutes by default), then pingEvery_us.
       const age = this.scheduler.now() - this.openedAt;
       const young = age < this.options.youngFor_us || this.scheduler.now() < this.burstUntil ? this.options.burstPingEvery_us : Infinity;
       const every = Math.min(young, this.options.pingEvery_us);

@@ -1,5 +1,5 @@
 /**
- * Minimal buffering (the paper's Table 1, DESIGN.md decision 4): streams the
+ * Minimal buffering (the paper's Table 1, docs/design.md, decision 4): streams the
  * queue's segments to every device that reads the trajectory, just in time.
  *
  * Each pump, for all devices in lock-step:

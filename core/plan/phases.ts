@@ -1,6 +1,6 @@
 /**
  * Timing: the path-length function s(t) of one segment, as a short list of
- * polynomial phases (DESIGN.md decision 1).
+ * polynomial phases (docs/design.md, decision 1).
  *
  * Within phase k, with τ the time since the phase began:
  *   s(τ)  = s0 + v0·τ + a0·τ²/2 + j·τ³/6

@@ -1,5 +1,5 @@
 /**
- * The simulated machine (DESIGN.md decision 8): real firmware examples in
+ * The simulated machine (docs/design.md, decision 8): real firmware examples in
  * wasm behind simulated USB links, driving a plant. No DOM and no Node
  * imports here, so it runs in Node, a Worker or a page; in Node, import the
  * disk loader from './device/nodeWasmLoader.ts'.

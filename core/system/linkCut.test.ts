@@ -1,5 +1,5 @@
 /**
- * Always stoppable (DESIGN.md decision 4): whenever links die mid-job, every reader
+ * Always stoppable (docs/design.md, decision 4): whenever links die mid-job, every reader
  * comes to rest on the path at v = 0, and the author says where.
  */
 import { afterAll, describe, expect, it } from 'vitest';

@@ -1,5 +1,5 @@
 /**
- * One segment of the trajectory: geometry × timing (DESIGN.md decision 1).
+ * One segment of the trajectory: geometry × timing (docs/design.md, decision 1).
  *
  * Geometry is a straight line from `start` to `end` in the motion axes, with unit
  * direction `unit` and `length` mm. Every position track is affine in the path

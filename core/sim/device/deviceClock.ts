@@ -5,7 +5,7 @@
  *   micros(t) = floor(offset_us + t · (1 + ppm·10⁻⁶)) mod 2³²
  *
  * where t is author µs (the scheduler's now()). The author never sees this
- * mapping; it estimates it from ping exchanges (DESIGN.md decision 3), and
+ * mapping; it estimates it from ping exchanges (docs/design.md, decision 3), and
  * tests compare its estimate with `deviceTimeAt`.
  */
 export interface DeviceClockConfig {
