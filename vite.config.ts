@@ -30,5 +30,8 @@ export default defineConfig({
     root: here,
     include: ['core/**/*.test.ts', 'app/**/*.test.ts'],
     setupFiles: ['core/testing/setup.ts'],
+    // Tests run in virtual time: the timeout only guards against a hang, and must not
+    // fail a long simulation on a busy machine (the default 5 s did, at 4.5 s alone).
+    testTimeout: 60_000,
   },
 });
