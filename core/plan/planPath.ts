@@ -116,7 +116,11 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
       from = v.end;
       return v;
     } catch (err) {
-      if (err instanceof MaxlError) throw new MaxlError(err.code, err.message, `moves[${i}]`);
+      // The queue's words name `endPosition`; a path move's key is `end`.
+      if (err instanceof MaxlError) {
+        const field = (err.field ?? '').replace(/^endPosition/, 'end');
+        throw new MaxlError(err.code, err.message.split('endPosition').join('end'), `moves[${i}]${field ? `.${field}` : ''}`);
+      }
       throw err;
     }
   });
@@ -164,6 +168,7 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
     segments: planned,
     skipped,
     sample(time: number): PathSample {
+      if (typeof time !== 'number' || Number.isNaN(time)) throw new MaxlError('MOVE_INVALID', `must be a time in s, got ${String(time)}`, 't');
       const s: TrajectorySample | null = sampleTimeline(0, segments.length, (i) => segments[i], startOf, time, 1);
       if (s === null) return { ...atStart, position: [...start] };
       return { position: s.position, velocity: s.velocity, acceleration: s.acceleration };

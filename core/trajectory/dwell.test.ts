@@ -204,8 +204,8 @@ describe('planPath with dwells', () => {
   });
 
   it('refuses a bad dwell naming the move, and a bad floor', () => {
-    expect(() => planPath([0, 0], [{ end: [1, 0] }, { dwell_s: -2 }], limits)).toThrow(expect.objectContaining({ code: 'MOVE_INVALID', field: 'moves[1]' }));
-    expect(() => planPath([0, 0], [{ dwell_s: 1, end: [1, 1] } as never], limits)).toThrow(/no endPosition/);
+    expect(() => planPath([0, 0], [{ end: [1, 0] }, { dwell_s: -2 }], limits)).toThrow(expect.objectContaining({ code: 'MOVE_INVALID', field: 'moves[1].dwell_s' }));
+    expect(() => planPath([0, 0], [{ dwell_s: 1, end: [1, 1] } as never], limits)).toThrow(/no end\b/);
     expect(() => planPath([0, 0], [], limits, { minSegment_us: -1 })).toThrow(expect.objectContaining({ field: 'options.minSegment_us' }));
   });
 

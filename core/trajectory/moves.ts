@@ -79,6 +79,13 @@ export class ValidatedMove {
 /** The fractions of a move that is not subdivided. */
 const WHOLE = [0, 1];
 
+/**
+ * The slowest speed cap a move may ask for, mm/s (1 µm/s). Below it, a speed's
+ * square underflows towards 0 (1e-300² is 0 in float64) and a segment's duration
+ * outgrows what the wire can time.
+ */
+export const MIN_SPEED = 1e-3;
+
 /** Lengths below this (mm) are treated as zero: such moves are skipped and counted. */
 export const ZERO_LENGTH_MM = 1e-9;
 
@@ -136,7 +143,7 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
   let maxVelocity = Infinity;
   if (move.maxVelocity !== undefined) {
     maxVelocity = finite('maxVelocity', move.maxVelocity);
-    if (maxVelocity <= 0) throw new MaxlError('MOVE_INVALID', 'must be positive (mm/s)', 'maxVelocity');
+    if (!(maxVelocity >= MIN_SPEED)) throw new MaxlError('MOVE_INVALID', `must be at least ${MIN_SPEED} mm/s, got ${maxVelocity}`, 'maxVelocity');
   }
   return new ValidatedMove(end, maxVelocity, resolveMoveEvents(move.eventChannels, config.eventChannels));
 }
