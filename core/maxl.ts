@@ -83,7 +83,14 @@ export class Maxl {
       return Promise.reject(err);
     }
     // Fast path: room now and nobody waiting, so no extra turn of the event loop.
-    if (this.pendingCount === 0 && this.queue.hasRoom()) return Promise.resolve(this.queue.appendValidated(validated));
+    if (this.pendingCount === 0 && this.queue.hasRoom()) {
+      try {
+        return Promise.resolve(this.queue.appendValidated(validated));
+      } catch (err) {
+        // A nonlinear transform failing inside the move's subdivision: refused, nothing queued.
+        return Promise.reject(err);
+      }
+    }
     return this.appendWhenRoom(validated);
   }
 

@@ -80,6 +80,40 @@ export class ValidatedMove {
 const WHOLE = [0, 1];
 
 /**
+ * How far from 0 a position track may go, mm. Positions travel as i32 in 2⁻¹⁶ mm
+ * (docs/protocol.md), so the wire carries ±32 768 mm; the author keeps a margin.
+ */
+export const TRACK_POSITION_LIMIT_MM = 32_767;
+
+/**
+ * Refuses an end position that a reader could not be sent: a motion axis, or an
+ * actuator after the transforms (a CoreXY sum can pass the range inside valid
+ * soft limits), beyond the wire's range. Actuators are linear between the ends of
+ * a segment of a linear transform, so checking the ends covers the whole segment.
+ * The transforms run here too, so a function transform that throws or gives a
+ * non-number is refused before anything is queued.
+ */
+function checkTrackRange(config: ResolvedConfig, end: readonly number[]): void {
+  const axes = config.motionAxes;
+  for (let i = 0; i < axes.length; i++) {
+    if (Math.abs(end[i]) > TRACK_POSITION_LIMIT_MM) {
+      throw new MaxlError('MOVE_INVALID', `${axes[i]} = ${end[i]} mm is beyond the ±${TRACK_POSITION_LIMIT_MM} mm a position track can carry`, `endPosition.${axes[i]}`);
+    }
+  }
+  if (config.transforms.length === 0) return;
+  const actuators = actuatorPosition(config.transforms, end);
+  for (let j = 0; j < actuators.length; j++) {
+    if (Math.abs(actuators[j]) > TRACK_POSITION_LIMIT_MM) {
+      throw new MaxlError(
+        'MOVE_INVALID',
+        `actuator ${config.actuatorAxes[j]} would be at ${actuators[j]} mm, beyond the ±${TRACK_POSITION_LIMIT_MM} mm a position track can carry`,
+        'endPosition',
+      );
+    }
+  }
+}
+
+/**
  * The slowest speed cap a move may ask for, mm/s (1 µm/s). Below it, a speed's
  * square underflows towards 0 (1e-300² is 0 in float64) and a segment's duration
  * outgrows what the wire can time.
@@ -140,6 +174,7 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
       );
     }
   }
+  checkTrackRange(config, end);
   let maxVelocity = Infinity;
   if (move.maxVelocity !== undefined) {
     maxVelocity = finite('maxVelocity', move.maxVelocity);

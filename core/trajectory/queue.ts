@@ -207,7 +207,9 @@ export class TrajectoryQueue {
    */
   appendValidated(move: ValidatedMove, reserved = false): MoveReceipt {
     if (reserved) this.reserved--;
-    const receipt = this.enqueue(move, this.nextMoveId++, null);
+    // The move's id is taken only once its segments exist (a transform may refuse them).
+    const receipt = this.enqueue(move, this.nextMoveId, null);
+    this.nextMoveId++;
     this.flushPlanned();
     return receipt;
   }

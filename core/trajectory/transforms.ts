@@ -14,7 +14,7 @@
  * error that matters is where the motor is at a given moment, not the chord's
  * distance to the curve).
  */
-import { configError } from '../errors.ts';
+import { MaxlError, configError } from '../errors.ts';
 import type { TransformConfig } from '../config/types.ts';
 
 export const DEFAULT_TRANSFORM_TOLERANCE_MM = 0.01;
@@ -84,12 +84,26 @@ export function resolveTransforms(configs: TransformConfig[] | undefined, motion
         if (typeof t.fn !== 'function') throw configError(`${field}.fn`, 'must be a function from inputs to outputs');
         const fn = t.fn;
         const outputs = t.to.length;
+        const names = [...t.to];
+        // A user's function may throw or return anything: every failure becomes a
+        // MaxlError naming the point, before any segment is made from it.
         const evaluate = (input: readonly number[]): number[] => {
-          const out = fn(input);
+          let out: unknown;
+          try {
+            out = fn(input);
+          } catch (err) {
+            throw new MaxlError('MOVE_INVALID', `the transform threw at (${input.join(', ')}): ${err instanceof Error ? err.message : String(err)}`, `${field}.fn`);
+          }
           if (!Array.isArray(out) || out.length !== outputs) {
             throw configError(`${field}.fn`, `must return ${outputs} numbers, returned ${Array.isArray(out) ? out.length : typeof out}`);
           }
-          return out;
+          for (let o = 0; o < outputs; o++) {
+            const v: unknown = out[o];
+            if (typeof v !== 'number' || !Number.isFinite(v)) {
+              throw new MaxlError('MOVE_INVALID', `gave ${String(v)} for ${names[o]} at (${input.join(', ')}): a transform must give finite numbers`, `${field}.fn`);
+            }
+          }
+          return out as number[];
         };
         return { type: 'function', inputs, outputs: [...t.to], linear: t.linear === true, tolerance, evaluate };
       }
