@@ -25,6 +25,8 @@ async function decodePng(page: Page, png: Buffer): Promise<{ width: number; heig
   }, png.toString('base64'));
 }
 
+test.use({ viewport: { width: 1600, height: 1000 } });
+
 test('light-paint a word: the saved exposure shows every column where the bitmap puts it', async ({ page }) => {
   await openWorkbench(page);
   await page.getByTestId('tab-lightpaint').click();
