@@ -84,6 +84,25 @@ test('bad input is refused with words: empty text, a picture too wide (with a pi
   await expect(page.getByTestId('lightpaint-input-error')).toHaveText(/Type some text/);
   await expect(page.getByTestId('lightpaint-start')).toBeDisabled();
 
+  // An image that does not decode: said, and nothing to paint.
+  await page.getByTestId('lightpaint-source-image').click();
+  await page.getByTestId('lightpaint-image').setInputFiles({ name: 'broken.png', mimeType: 'image/png', buffer: Buffer.from('not a png at all') });
+  await expect(page.getByTestId('lightpaint-problem')).toHaveText(/“broken\.png” could not be decoded/);
+  await expect(page.getByTestId('lightpaint-start')).toBeDisabled();
+  // A real one (a 1 × 1 white PNG made by the browser): scaled to the strip and lit.
+  const white = await page.evaluate(async () => {
+    const c = new OffscreenCanvas(4, 4);
+    const g = c.getContext('2d')!;
+    g.fillStyle = 'white';
+    g.fillRect(0, 0, 4, 4);
+    const blob = await c.convertToBlob({ type: 'image/png' });
+    return Array.from(new Uint8Array(await blob.arrayBuffer()));
+  });
+  await page.getByTestId('lightpaint-image').setInputFiles({ name: 'white.png', mimeType: 'image/png', buffer: Buffer.from(white) });
+  // 4 × 4 px on 8 LEDs 6.4 mm apart at a 2 mm pitch: 8 · 6.4 / 2 ≈ 26 columns.
+  await expect(page.getByTestId('lightpaint-bitmap')).toHaveAttribute('data-width', '26');
+  await page.getByTestId('lightpaint-source-text').click();
+
   await page.getByTestId('lightpaint-speed').fill('500');
   await expect(page.getByTestId('lightpaint-capped')).toHaveText(/limit is 200 mm\/s/);
   await page.getByTestId('lightpaint-speed').fill('200');
