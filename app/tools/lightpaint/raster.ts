@@ -164,7 +164,8 @@ export function planRaster(bitmap: Bitmap, s: RasterSettings, m: RasterMachine):
       error:
         ox < m.softMin[0]
           ? `The origin (x = ${ox} mm) is outside the soft limits [${m.softMin[0]}, ${m.softMax[0]}] mm.`
-          : `The pass needs ${total.toFixed(1)} mm along ${axis} (${n} columns × ${s.pitch_mm} mm and ${runUp} mm of run-up and run-down each side), but only ${Math.max(0, room).toFixed(1)} mm lie between the origin and the soft limit at ${m.softMax[0]} mm: ${missing.toFixed(1)} mm missing. Move the origin left, shorten the picture` +
+          : `The pass needs ${total.toFixed(1)} mm along ${axis} (${n} columns × ${s.pitch_mm} mm and ${runUp} mm of run-up and run-down each side), but only ${Math.max(0, room).toFixed(1)} mm lie between the origin and the soft limit at ${m.softMax[0]} mm: ${missing.toFixed(1)} mm missing. ` +
+            (total <= m.softMax[0] - m.softMin[0] ? `Set the origin at ${axis} ≤ ${(m.softMax[0] - total).toFixed(1)} mm, shorten the picture` : `It is longer than the whole ${axis} range: shorten the picture`) +
             (fitPitch_mm ? `, or use a pitch of ${fitPitch_mm} mm.` : '.'),
       fitPitch_mm,
     };
