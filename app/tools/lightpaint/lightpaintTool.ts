@@ -8,7 +8,7 @@
  * Nothing in the job is simulated-only: on real boards the same moves and event
  * channels drive the LightPainter example's NeoPixels.
  */
-import type { Maxl } from '../../../core/index.ts';
+import { planPath, type LinearMove, type Maxl } from '../../../core/index.ts';
 import type { ToolContext, WorkbenchTool } from '../../worker/toolContext.ts';
 import { BitmapError, repeatBitmap, type Bitmap } from './bitmap.ts';
 import { exposureFrame, fullScaleFor } from './exposureFrame.ts';
@@ -146,7 +146,14 @@ export class LightpaintTool implements WorkbenchTool<LightpaintCommand> {
       return;
     }
     for (const note of plan.notes) this.ctx.log('warning', 'LIGHTPAINT', note);
-    if (!this.ctx.startJob({ name: request.name, moves: plan.moves })) {
+    // The planner's own duration, for the job panel's ETA.
+    const passes = plan.moves as LinearMove[];
+    const planned_s = planPath(
+      [...maxl.nextMoveStart],
+      passes.map((m) => ({ end: m.endPosition as number[], maxVelocity: m.maxVelocity })),
+      this.ctx.config.limits ?? {},
+    ).duration;
+    if (!this.ctx.startJob({ name: request.name, moves: plan.moves, planned_s })) {
       this.problem('The job did not start: see the log.');
       return;
     }
