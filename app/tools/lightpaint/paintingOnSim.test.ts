@@ -52,4 +52,28 @@ describe('light painting on the simulated light painter', () => {
       await b.sim.stop();
     }, 120_000);
   }
+
+  it('right to left, the word lands in the same place', async () => {
+    const b = await startMachine(lightPainter(), { seed: 5 });
+    const painting = await paintOnSim(b, textBitmap('MAXL', 8), { ...settings(200), reverse: true }, [20, 100]);
+    const a = analyseColumns(painting.exposure, painting.layout, painting.ledOffsets_mm);
+    expect(a.mismatches).toEqual([]);
+    expect(a.placementError_mm).toBeLessThanOrEqual(PITCH / 4);
+    await b.sim.stop();
+  }, 120_000);
+
+  it('without the cruise channel the strip is not dimmed, and the ramps get far more light per mm', async () => {
+    const preset = lightPainter();
+    preset.config.eventChannels = preset.config.eventChannels!.filter((c) => c !== 'neopixelCruise');
+    preset.config.subscriptions = preset.config.subscriptions!.filter((sub) => sub.track !== 'neopixelCruise');
+    const b = await startMachine(preset);
+    const bar = emptyBitmap(60, 8);
+    bar.lit.fill(1);
+    const painting = await paintOnSim(b, bar, settings(200), [20, 100]);
+    expect(painting.plan.notes.join(' ')).toMatch(/not dimmed/);
+    const e = exposureEvenness(painting.exposure, painting.layout, painting.ledOffsets_mm, painting.speedAt, painting.plan.speed);
+    // At 20 % of cruise an undimmed strip leaves 5 times the light per mm.
+    expect(e.rampSpread).toBeGreaterThan(1);
+    await b.sim.stop();
+  }, 120_000);
 });
