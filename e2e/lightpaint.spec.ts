@@ -121,3 +121,20 @@ test('bad input is refused with words: empty text, a picture too wide (with a pi
   await page.getByTestId('job-cancel').click();
   await expect(page.getByTestId('job-progress')).toHaveAttribute('data-phase', 'cancelled');
 });
+
+test('a bitmap painted on the grid is what the strip writes', async ({ page }) => {
+  await openWorkbench(page);
+  await page.getByTestId('tab-lightpaint').click();
+  await page.getByTestId('lightpaint-source-paint').click();
+  await page.getByTestId('lightpaint-columns').fill('4');
+  await page.getByTestId('lightpaint-columns').press('Tab');
+  await expect(page.getByTestId('lightpaint-bitmap')).toHaveAttribute('data-width', '4');
+  // Row 0 is the top (LED 7), row 7 the bottom (LED 0).
+  await page.getByTestId('lightpaint-cell-0-0').click();
+  await page.getByTestId('lightpaint-cell-7-0').click();
+  await page.getByTestId('lightpaint-cell-3-2').click();
+  await page.getByTestId('lightpaint-start').click();
+  await expect(page.getByTestId('job-progress')).toHaveAttribute('data-phase', 'done', { timeout: 60_000 });
+  const layout = JSON.parse((await page.getByTestId('lightpaint-layout').getAttribute('data-layout')) as string) as RasterLayout;
+  expect(layout.bits).toEqual([0b10000001, 0, 1 << 4, 0]);
+});
