@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import type { EvaluatorState, LinearMove, EventEvaluatorSpec } from '../../../core/index.ts';
 import { textBitmap } from './bitmap.ts';
-import { bitmapEvaluator, columnAt, isProblem, planRaster, runUpLength, type RasterMachine, type RasterPlan, type RasterSettings } from './raster.ts';
+import { PASS_PIECE_MM, bitmapEvaluator, columnAt, isProblem, planRaster, runUpLength, type RasterMachine, type RasterPlan, type RasterSettings } from './raster.ts';
 
 const machine: RasterMachine = {
   motionAxes: ['x', 'y'],
@@ -45,10 +45,14 @@ describe('raster', () => {
     expect(isProblem(plan)).toBe(false);
     expect(plan.runUp_mm).toBe(runUpLength(100, 2000));
     expect(plan.layout.x0).toBeCloseTo(20 + plan.runUp_mm, 9);
-    const [travel, pass] = plan.moves as LinearMove[];
+    const [travel, ...pieces] = plan.moves as LinearMove[];
     expect(travel.endPosition).toEqual([20, 100]);
     expect(travel.eventChannels).toEqual({ neopixelBitmap: 0 });
-    expect(pass.endPosition).toEqual([20 + 2 * plan.runUp_mm + 11 * 2, 100]);
+    // 22.2 mm in two collinear pieces of at most PASS_PIECE_MM, each with the same channels.
+    expect(pieces).toHaveLength(Math.ceil((2 * plan.runUp_mm + 22) / PASS_PIECE_MM));
+    expect(pieces.map((p) => p.endPosition)).toEqual([[20 + plan.runUp_mm + 11, 100], [20 + 2 * plan.runUp_mm + 11 * 2, 100]]);
+    for (const p of pieces) expect(p.eventChannels).toBe(pieces[0].eventChannels);
+    const pass = pieces[0];
     const events = pass.eventChannels as Array<EventEvaluatorSpec | { name: string; value: number }>;
     expect(events.map((e) => e.name)).toEqual(['neopixelBitmap', 'neopixelColour', 'neopixelCruise']);
     expect(events[1]).toEqual({ name: 'neopixelColour', value: 0xff3c0a });
@@ -58,9 +62,10 @@ describe('raster', () => {
 
   it('reversed, the pass runs right to left over the same span', () => {
     const plan = planRaster(textBitmap('HI', 8), { ...settings, reverse: true }, machine) as RasterPlan;
-    const [travel, pass] = plan.moves as LinearMove[];
-    expect(travel.endPosition).toEqual([plan.layout.xEnd, 100]);
-    expect(pass.endPosition).toEqual([plan.layout.xStart, 100]);
+    const moves = plan.moves as LinearMove[];
+    expect(moves[0].endPosition).toEqual([plan.layout.xEnd, 100]);
+    expect(moves[moves.length - 1].endPosition).toEqual([plan.layout.xStart, 100]);
+    for (let k = 2; k < moves.length; k++) expect((moves[k].endPosition as number[])[0]).toBeLessThan((moves[k - 1].endPosition as number[])[0]);
   });
 
   it('caps the speed at the machine limit and says so', () => {

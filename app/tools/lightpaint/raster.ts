@@ -8,7 +8,8 @@
  * Column c is lit over [x0 + c·p, x0 + (c+1)·p): its centre is x0 + (c + ½)·p.
  * The tool travels at y = origin y (the strip's centre); the path spans
  * [origin x, origin x + run-up + n·p + run-down], right to left when reversed
- * (the picture is the same either way: columns go by position, not by time).
+ * (the picture is the same either way: columns go by position, not by time),
+ * queued in collinear pieces of at most PASS_PIECE_MM so a pause brakes mid-pass.
  *
  * Placement. The author samples the evaluator every h = evaluationPrecision
  * and holds each value until the next sample, so a value set at t is shown over
@@ -41,6 +42,12 @@ import { packColour } from './ledColour.ts';
 export const BITMAP_CHANNEL = 'neopixelBitmap';
 export const COLOUR_CHANNEL = 'neopixelColour';
 export const CRUISE_CHANNEL = 'neopixelCruise';
+
+/**
+ * mm: the pass is queued in pieces no longer than this. A queued segment runs to
+ * its end once sent, so the pieces bound how far a pause or cancel runs on.
+ */
+export const PASS_PIECE_MM = 20;
 
 /** ms between evaluator samples: ±0.05 mm of column edge at 200 mm/s. */
 export const DEFAULT_EVALUATION_PRECISION_MS = 0.5;
@@ -188,10 +195,14 @@ export function planRaster(bitmap: Bitmap, s: RasterSettings, m: RasterMachine):
     { name: BITMAP_CHANNEL, evaluationPrecision: s.evaluationPrecision_ms, evaluator: bitmapEvaluator(layout, axis, 0, s.evaluationPrecision_ms) },
     ...fixed,
   ];
-  const moves: Move[] = [
-    { endPosition: at(from), maxVelocity: speed, eventChannels: travelEvents },
-    { endPosition: at(to), maxVelocity: speed, eventChannels: rasterEvents },
-  ];
+  const moves: Move[] = [{ endPosition: at(from), maxVelocity: speed, eventChannels: travelEvents }];
+  // The pass in collinear pieces (no slowing at their joints), each setting the same
+  // channels: a pause or a cancel brakes within a piece or two instead of at the end.
+  const pieces = Math.max(1, Math.ceil(total / PASS_PIECE_MM));
+  for (let k = 1; k <= pieces; k++) {
+    const x = k === pieces ? to : from + ((to - from) * k) / pieces;
+    moves.push({ endPosition: at(x), maxVelocity: speed, eventChannels: rasterEvents });
+  }
   return { moves, layout, speed, cappedFrom, runUp_mm: runUp, notes };
 }
 

@@ -21,25 +21,20 @@ export interface Painting {
   speedAt: (x: number) => number;
 }
 
-export async function paintOnSim(b: Bench, bitmap: Bitmap, settings: RasterSettings, origin: number[]): Promise<Painting> {
-  const plan = planRaster(bitmap, settings, rasterMachine(b.maxl.config, origin));
-  if (isProblem(plan)) throw new Error(plan.error);
-  const leds = b.sim.plant.leds;
-  const strip = b.sim.preset.plant.ledStrip;
-  if (!leds || !strip) throw new Error('this machine has no LED strip');
-  leds.image.fill(0);
-  const { layout } = plan;
-  // The planned state along the pass, sampled every 0.1 ms of the job.
+/**
+ * The planned speed where the tool passed x, along the line y = `y` between
+ * author times t0 and t1 (µs): the author's plan sampled every 0.1 ms while it
+ * moved along x on that line, linear between samples. Where the tool passed x
+ * more than once, the samples are mixed: use it on one pass.
+ */
+export function plannedSpeedAlong(b: Bench, y: number, t0: number, t1: number): (x: number) => number {
   const samples: Array<{ x: number; v: number }> = [];
-  const t0 = b.scheduler.now();
-  await runJob(b, plan.moves);
-  const t1 = b.scheduler.now();
   for (let t = t0; t <= t1; t += 100) {
     const s = b.maxl.sample(t);
-    if (Math.abs(s.position[1] - layout.y) < 1e-6 && s.speed > 0 && Math.abs(s.velocity[1]) < 1e-9) samples.push({ x: s.position[0], v: s.speed });
+    if (Math.abs(s.position[1] - y) < 1e-6 && Math.abs(s.velocity[1]) < 1e-9) samples.push({ x: s.position[0], v: s.speed });
   }
   samples.sort((a, c) => a.x - c.x);
-  const speedAt = (x: number): number => {
+  return (x) => {
     let lo = 0;
     let hi = samples.length - 1;
     if (hi < 0) return 0;
@@ -50,8 +45,21 @@ export async function paintOnSim(b: Bench, bitmap: Bitmap, settings: RasterSetti
     }
     const a = samples[lo];
     const c = samples[hi];
-    return c.x === a.x ? a.v : a.v + ((c.v - a.v) * (x - a.x)) / (c.x - a.x);
+    return c.x === a.x ? Math.min(a.v, c.v) : a.v + ((c.v - a.v) * (x - a.x)) / (c.x - a.x);
   };
+}
+
+export async function paintOnSim(b: Bench, bitmap: Bitmap, settings: RasterSettings, origin: number[]): Promise<Painting> {
+  const plan = planRaster(bitmap, settings, rasterMachine(b.maxl.config, origin));
+  if (isProblem(plan)) throw new Error(plan.error);
+  const leds = b.sim.plant.leds;
+  const strip = b.sim.preset.plant.ledStrip;
+  if (!leds || !strip) throw new Error('this machine has no LED strip');
+  leds.image.fill(0);
+  const { layout } = plan;
+  const t0 = b.scheduler.now();
+  await runJob(b, plan.moves);
+  const speedAt = plannedSpeedAlong(b, layout.y, t0, b.scheduler.now());
   const { width, height, mmPerPixel, origin_mm } = leds.imageConfig;
   const brightest = settings.colour.indexOf(Math.max(...settings.colour));
   const values = new Float64Array(width * height);
