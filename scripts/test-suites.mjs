@@ -44,7 +44,7 @@ export const suites = [
   },
   {
     name: 'e2e',
-    describe: 'Playwright in Debian chromium: the workbench on the simulated machine (configure, jog, job, STOP) and the WebSerial path through a fake navigator.serial',
+    describe: 'Playwright in Debian chromium: the workbench on the simulated machine (configure, jog, job, STOP, light painting) and the WebSerial path through a fake navigator.serial',
     command: ['npx', 'playwright', 'test'],
     env: { CI: '1' },
     tools: ['chromium'],

@@ -10,6 +10,7 @@
  * once the last one arrived, so snapshots never queue up and never outpace frames.
  */
 import type { MaxlConfig, TransformConfig } from '../../core/index.ts';
+import type { LightpaintCommand, LightpaintEvent } from '../tools/lightpaint/protocol.ts';
 
 // ---------------------------------------------------------------------------
 // Shared shapes
@@ -204,9 +205,9 @@ export interface Snapshot {
 // The tools (app/tools/<name>/protocol.ts): each command and event carries `tool`.
 
 /** Every tool's commands. */
-export type ToolCommand = never;
+export type ToolCommand = LightpaintCommand;
 /** Every tool's events. */
-export type ToolEvent = never;
+export type ToolEvent = LightpaintEvent;
 
 // ---------------------------------------------------------------------------
 // main → worker

@@ -4,9 +4,10 @@
  */
 import type { ToolContext, WorkbenchTool } from './toolContext.ts';
 import type { ToolCommand } from './protocol.ts';
+import { LightpaintTool } from '../tools/lightpaint/lightpaintTool.ts';
 
 export function createTools(ctx: ToolContext): Map<string, WorkbenchTool<ToolCommand>> {
   const tools = new Map<string, WorkbenchTool<ToolCommand>>();
-  void ctx;
+  tools.set('lightpaint', new LightpaintTool(ctx) as WorkbenchTool<ToolCommand>);
   return tools;
 }

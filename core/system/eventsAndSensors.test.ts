@@ -14,11 +14,15 @@ describe('event channels', () => {
     const TICK_MS = 10;
     // "HELLO"-style stripes: a different bit pattern every 4 mm of x.
     const stripes = (x: number) => [0x81, 0x42, 0x24, 0x18][Math.floor(x / 4) % 4];
-    const planned: Array<{ t: number; value: number }> = [];
+    // Each segment's changes, once (a segment may be reported transmitted again when
+    // its timing is resent), then only real changes: the strip shows each change once.
+    const bySegment = new Map<number, Array<{ t: number; value: number }>>();
     b.maxl.queue.subscribe((e) => {
       if (e.type !== 'transmitted') return;
       for (const seg of e.segments) {
-        for (const track of b.maxl.queue.eventTracksOf(seg)) track.times.forEach((t, k) => planned.push({ t: seg.startTime_us + t * 1e6, value: track.values[k] }));
+        const changes: Array<{ t: number; value: number }> = [];
+        for (const track of b.maxl.queue.eventTracksOf(seg)) track.times.forEach((t, k) => changes.push({ t: seg.startTime_us + t * 1e6, value: track.values[k] }));
+        bySegment.set(seg.id, changes);
       }
     });
     const jobStart = b.scheduler.now();
@@ -33,6 +37,10 @@ describe('event channels', () => {
         for (let i = 0; i < 8; i++) if (rgb[3 * i] > 0) value |= 1 << i;
         return { t: o.t_us, value };
       });
+    const planned: Array<{ t: number; value: number }> = [];
+    for (const id of [...bySegment.keys()].sort((a, c) => a - c)) {
+      for (const change of bySegment.get(id)!) if (planned.length === 0 || planned[planned.length - 1].value !== change.value) planned.push(change);
+    }
     expect(planned.length).toBeGreaterThan(15);
     expect(shows.length).toBe(planned.length);
     let worst = 0;

@@ -6,8 +6,11 @@
  *
  * Firmware: firmware/examples/Stepper (device "motorOne", reader "stepper",
  * STEP D2, DIR D5, 80 steps/mm) twice, renamed "motorA" and "motorB"; and
- * firmware/examples/LightPainter (device "lightPainter", event reader
- * "neopixelBitmap", strip on D6, 8 LEDs lit (255, 60, 10)).
+ * firmware/examples/LightPainter (device "lightPainter", strip on D6): event
+ * readers "neopixelBitmap" (one bit per LED), "neopixelColour" (0xRRGGBB of a
+ * lit LED at cruise, (255, 60, 10) until set) and "neopixelCruise" (mm/s), and
+ * a velocity reader that dims the strip by v / cruise, so light per mm stays
+ * even through the ramps (the paper's Listing 4, for LEDs).
  */
 import type { MachinePreset } from './presetTypes.ts';
 
@@ -21,13 +24,16 @@ export function lightPainter(): MachinePreset {
     description: 'CoreXY light painter: motors a and b on two Stepper boards, an 8-LED strip on an 8-bit event channel',
     config: {
       motionAxes: ['x', 'y'],
-      eventChannels: ['neopixelBitmap'],
+      eventChannels: ['neopixelBitmap', 'neopixelColour', 'neopixelCruise'],
       limits: { maxVelocity: 200, maxAcceleration: 2000, junctionDeviation: 0.05 },
       transforms: [{ type: 'corexy', from: ['x', 'y'], to: ['a', 'b'] }],
       subscriptions: [
         { device: 'motorA', track: 'a', reader: 'stepper' },
         { device: 'motorB', track: 'b', reader: 'stepper' },
         { device: 'lightPainter', track: 'neopixelBitmap', reader: 'neopixelBitmap' },
+        { device: 'lightPainter', track: 'neopixelColour', reader: 'neopixelColour' },
+        { device: 'lightPainter', track: 'neopixelCruise', reader: 'neopixelCruise' },
+        { device: 'lightPainter', track: 'velocity', reader: 'velocity' },
       ],
       softLimits: { x: [0, 300], y: [0, 200] },
     },
@@ -35,7 +41,12 @@ export function lightPainter(): MachinePreset {
       { name: 'motorA', example: 'Stepper', firmwareName: 'motorOne', readers: [{ name: 'stepper', kind: 'position' }], clock: { offset_us: 12_345_678, ppm: 35 } },
       // Starts 21 minutes before its 32-bit wrap: an hour-long job crosses it.
       { name: 'motorB', example: 'Stepper', firmwareName: 'motorOne', readers: [{ name: 'stepper', kind: 'position' }], clock: { offset_us: 3_000_000_000, ppm: -60 } },
-      { name: 'lightPainter', example: 'LightPainter', readers: [{ name: 'neopixelBitmap', kind: 'event' }], clock: { offset_us: 987_654, ppm: 120 } },
+      { name: 'lightPainter', example: 'LightPainter', readers: [
+          { name: 'neopixelBitmap', kind: 'event' },
+          { name: 'neopixelColour', kind: 'event' },
+          { name: 'neopixelCruise', kind: 'event' },
+          { name: 'velocity', kind: 'velocity' },
+        ], clock: { offset_us: 987_654, ppm: 120 } },
     ],
     plant: {
       motors: [

@@ -51,10 +51,11 @@
 #endif
 #endif
 
-// Event slots: distinct event tracks one device can follow.
+// Event slots: distinct event tracks one device can follow. The LightPainter
+// example follows 3 (bitmap, colour, cruise speed).
 #ifndef MAXL_EVENT_SLOTS
 #if MAXL_SMALL_RAM
-#define MAXL_EVENT_SLOTS 2
+#define MAXL_EVENT_SLOTS 3
 #else
 #define MAXL_EVENT_SLOTS 8
 #endif
