@@ -30,7 +30,12 @@ export interface MaxlOptions {
   scheduler?: Scheduler;
   session?: Partial<SessionOptions>;
   streamer?: Partial<StreamerOptions>;
-  /** How long begin() syncs clocks before streaming (µs). Default 1 s. */
+  /**
+   * How long begin() syncs clocks before streaming (µs). Default 2 s: after 1 s a
+   * young clock model was still off by ~45 µs on a busy link (three boards, event
+   * and velocity tracks), enough to put a CoreXY motor at 280 mm/s a third of a
+   * step off its plan (core/system/positions.test.ts, lightPainter).
+   */
   syncBeforeStart_us?: number;
   /** How many transmitted segments the as-planned history keeps for sampling the past. Default 100 000. */
   historyLimit?: number;

@@ -148,7 +148,7 @@ export class Runtime {
       }
     }
     // Let the clock models see enough exchanges for a rate before anything is timed.
-    const sync = this.options.syncBeforeStart_us ?? 1_000_000;
+    const sync = this.options.syncBeforeStart_us ?? 2_000_000;
     for (const s of this.sessions) s.pingBurst(sync + 1_000_000);
     await this.scheduler.sleep(sync);
     for (const s of this.sessions) this.emit({ type: 'device', device: s.label, state: 'open' });
