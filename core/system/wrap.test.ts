@@ -7,8 +7,8 @@ import { blotPlotter } from '../sim/presets/index.ts';
 import { runAndCheckPositions, startMachine } from './harness.ts';
 
 it('a job crossing the u32 micros wrap runs as any other', async () => {
-  // The board's counter wraps 1.8 s after power-up: during the job below.
-  const b = await startMachine(blotPlotter(), { sim: { clocks: { blot: { offset_us: 2 ** 32 - 1_800_000, ppm: -25 } } } });
+  // The board's counter wraps 2.8 s after power-up: after begin() (2 s of clock sync), during the job below.
+  const b = await startMachine(blotPlotter(), { sim: { clocks: { blot: { offset_us: 2 ** 32 - 2_800_000, ppm: -25 } } } });
   const clock = b.sim.devices.blot.clock;
   const before = clock.microsAt(b.scheduler.now());
   const moves = [[30, 0], [30, 30], [0, 30], [0, 0], [45, 20]].map((p) => ({ endPosition: p }));
