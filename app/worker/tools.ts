@@ -4,9 +4,11 @@
  */
 import type { ToolContext, WorkbenchTool } from './toolContext.ts';
 import type { ToolCommand } from './protocol.ts';
+import { FileJobs } from '../tools/plotter/files/fileJobs.ts';
 
 export function createTools(ctx: ToolContext): Map<string, WorkbenchTool<ToolCommand>> {
   const tools = new Map<string, WorkbenchTool<ToolCommand>>();
-  void ctx;
+  // Temporary: the plotter's file commands (file-*) only, until the plotter's own router takes them.
+  tools.set('plotter', new FileJobs(ctx));
   return tools;
 }
