@@ -112,6 +112,8 @@ export function importGcode(name: string, text: string, options: GcodeImportOpti
       } else note(`${w.text} is not supported (ignored)`, line);
     }
     let dwellHere = false;
+    /** An unsupported G code owns the line's coordinates (G28 X0, G92 X0…): nothing on it moves. */
+    let skipLine = false;
     let arcOrLine: 0 | 1 | 2 | 3 | null = null;
     for (const c of codes) {
       const v = c.value;
@@ -156,9 +158,11 @@ export function importGcode(name: string, text: string, options: GcodeImportOpti
           absolute = false;
           break;
         default:
-          note(`${c.text} is not supported (ignored)`, line);
+          note(`${c.text} is not supported (the line is ignored)`, line);
+          skipLine = true;
       }
     }
+    if (skipLine) continue;
     if (p.F) {
       if (!(p.F.value > 0)) throw new FileImportError(`${p.F.text}: the feed rate must be > 0`, line);
       feed = (p.F.value * unit) / 60;
