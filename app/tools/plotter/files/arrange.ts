@@ -1,11 +1,12 @@
 /**
  * Placing a drawing on the bed: rotate, scale (or fit), place; all in mm.
  *
- * The drawing is rotated by a quarter turn count about its bounding box's centre,
+ * The drawing is rotated by quarter turns (clockwise as seen on the bed, whose y
+ * runs down the page) about its bounding box's centre,
  * then scaled about it, then placed:
  * - `center`: its box's centre goes to the centre of the area (the soft limits);
  * - `file`: it keeps the file's own coordinates, offset by the work origin (a
- *   G-code file's X0 Y0 is the origin; an SVG page's bottom-left corner is).
+ *   G-code file's X0 Y0 is the origin; an SVG page's top-left corner is).
  * `fit` picks the largest scale at which the rotated drawing fits inside the area
  * less the margin on every side, and centres it.
  *
@@ -15,7 +16,7 @@
 import { boundsOf, type Bounds, type PlotPath } from './paths.ts';
 
 export interface Arrangement {
-  /** Quarter turns counter-clockwise: 0, 90, 180 or 270 degrees. */
+  /** Quarter turns, clockwise as seen on the bed (x right, y down): 0, 90, 180 or 270 degrees. */
   rotate_deg: 0 | 90 | 180 | 270;
   /** Scale to fit the area less the margin (ignores `scale` and `place`). */
   fit: boolean;

@@ -24,7 +24,11 @@ export interface FileWarning {
   message: string;
 }
 
-/** An imported file. Drawing coordinates are mm with y up (SVG's y is flipped on import). */
+/**
+ * An imported file. Drawing coordinates are mm, x right and y down the bed (the
+ * machine's coordinates, as saxi and AxiDraw lay a drawing on the bed): an SVG
+ * keeps its page's axes, a G-code file its own X and Y.
+ */
 export interface Drawing {
   name: string;
   kind: 'svg' | 'gcode';

@@ -15,8 +15,8 @@ ${body}
 </svg>`;
 
 const pts = (p: PlotPath) => Array.from(p.points, (v) => Math.round(v * 1e6) / 1e6);
-/** SVG user (y down, 1 mm) to the import's mm (y up). */
-const up = (xy: number[]) => xy.map((v, i) => (i % 2 === 1 ? 100 - v : v));
+/** SVG user units (1 mm, y down) are the import's mm, y down too. */
+const up = (xy: number[]) => xy;
 
 function refused(text: string): FileImportError {
   try {
@@ -29,7 +29,7 @@ function refused(text: string): FileImportError {
 }
 
 describe('SVG elements', () => {
-  it('line, polyline and polygon (closed), y flipped so the page’s bottom-left is 0, 0', () => {
+  it('line, polyline and polygon (closed), in page mm (y down, the top-left corner at 0, 0)', () => {
     const d = importSvg('a.svg', page('<line x1="10" y1="10" x2="20" y2="30"/><polyline points="0,0 10,0 10,10"/><polygon points="50 50 60 50 60 60"/>'));
     expect(d.paths.map(pts)).toEqual([up([10, 10, 20, 30]), up([0, 0, 10, 0, 10, 10]), up([50, 50, 60, 50, 60, 60, 50, 50])]);
     expect(d.warnings).toEqual([]);
@@ -46,8 +46,8 @@ describe('SVG elements', () => {
     }
     expect(Math.min(...xs)).toBeCloseTo(50, 9);
     expect(Math.max(...xs)).toBeCloseTo(90, 9);
-    expect(Math.min(...ys)).toBeCloseTo(100 - 70, 9);
-    expect(Math.max(...ys)).toBeCloseTo(100 - 50, 9);
+    expect(Math.min(...ys)).toBeCloseTo(50, 9);
+    expect(Math.max(...ys)).toBeCloseTo(70, 9);
     // The corner at (50, 50): the straight top edge starts rx = 5 in, and the corner point itself is cut.
     expect(pts(rounded).slice(0, 2)).toEqual(up([55, 50]));
     expect(rounded.points.length / 2).toBeGreaterThan(12);
@@ -59,8 +59,8 @@ describe('SVG elements', () => {
   it('circle and ellipse: every point on the exact curve, closed', () => {
     const d = importSvg('a.svg', page('<circle cx="50" cy="40" r="20"/><ellipse cx="30" cy="70" rx="15" ry="5"/>'));
     const [c, e] = d.paths;
-    for (let i = 0; i < c.points.length; i += 2) expect(Math.hypot(c.points[i] - 50, c.points[i + 1] - 60)).toBeCloseTo(20, 9);
-    for (let i = 0; i < e.points.length; i += 2) expect(((e.points[i] - 30) / 15) ** 2 + ((e.points[i + 1] - 30) / 5) ** 2).toBeCloseTo(1, 9);
+    for (let i = 0; i < c.points.length; i += 2) expect(Math.hypot(c.points[i] - 50, c.points[i + 1] - 40)).toBeCloseTo(20, 9);
+    for (let i = 0; i < e.points.length; i += 2) expect(((e.points[i] - 30) / 15) ** 2 + ((e.points[i + 1] - 70) / 5) ** 2).toBeCloseTo(1, 9);
     expect(pts(c).slice(0, 2)).toEqual(pts(c).slice(-2));
   });
 
@@ -72,9 +72,9 @@ describe('SVG elements', () => {
     expect(pts(d.paths[1])).toEqual(up([40, 10, 45, 15]));
     const q = d.paths[2];
     expect(pts(q).slice(-2)).toEqual(up([100, 60]));
-    // T reflects the control point: the second half mirrors the first, below the line y = 60.
-    const lowest = Math.min(...Array.from(q.points).filter((_, i) => i % 2 === 1));
-    expect(lowest).toBeCloseTo(100 - 65, 6);
+    // T reflects the control point: the second half mirrors the first, to y = 65 below the line y = 60.
+    const lowest = Math.max(...Array.from(q.points).filter((_, i) => i % 2 === 1));
+    expect(lowest).toBeCloseTo(65, 6);
   });
 });
 
@@ -102,22 +102,23 @@ describe('SVG transforms, viewBox and units', () => {
       ['6pc', 25.4],
     ] as const) {
       const d = importSvg('a.svg', `<svg xmlns="http://www.w3.org/2000/svg" width="${w}" height="${w}" viewBox="0 0 10 10"><line x1="0" y1="10" x2="10" y2="10"/></svg>`);
-      expect(pts(d.paths[0])).toEqual([0, 0, Math.round(mm * 1e6) / 1e6, 0]);
+      const v = Math.round(mm * 1e6) / 1e6;
+      expect(pts(d.paths[0])).toEqual([0, v, v, v]);
     }
   });
 
   it('no viewBox: user units are px; a viewBox with an offset and "meet" keeps the aspect and centres', () => {
     const plain = importSvg('a.svg', '<svg xmlns="http://www.w3.org/2000/svg" width="96px" height="96px"><line x1="0" y1="0" x2="96" y2="0"/></svg>');
-    expect(pts(plain.paths[0])).toEqual([0, 25.4, 25.4, 25.4]);
+    expect(pts(plain.paths[0])).toEqual([0, 0, 25.4, 0]);
     // A 20 × 10 box in a 100 × 100 mm viewport: scale 5, centred vertically (25 mm above and below).
     const meet = importSvg('a.svg', '<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="10 10 20 10"><line x1="10" y1="10" x2="30" y2="20"/></svg>');
-    expect(pts(meet.paths[0])).toEqual([0, 75, 100, 25]);
+    expect(pts(meet.paths[0])).toEqual([0, 25, 100, 75]);
   });
 
   it('lengths with units inside the drawing (r="5mm") are converted to user units', () => {
     const d = importSvg('a.svg', '<svg xmlns="http://www.w3.org/2000/svg" width="96px" height="96px"><circle cx="1in" cy="1in" r="5mm"/></svg>');
     const c = d.paths[0];
-    for (let i = 0; i < c.points.length; i += 2) expect(Math.hypot(c.points[i] - 25.4, c.points[i + 1] - 0)).toBeCloseTo(5, 6);
+    for (let i = 0; i < c.points.length; i += 2) expect(Math.hypot(c.points[i] - 25.4, c.points[i + 1] - 25.4)).toBeCloseTo(5, 6);
   });
 });
 
@@ -143,13 +144,13 @@ describe('what is not drawn', () => {
 });
 
 describe('curves within the chord tolerance of the exact shape', () => {
-  /** Dense samples of an exact curve, in the import's mm (y up). */
+  /** Dense samples of an exact curve, in the import's mm. */
   const dense = (f: (t: number) => [number, number], n = 4000) => {
     const out = new Float64Array(2 * (n + 1));
     for (let i = 0; i <= n; i++) {
       const [x, y] = f(i / n);
       out[2 * i] = x;
-      out[2 * i + 1] = 100 - y;
+      out[2 * i + 1] = y;
     }
     return out;
   };

@@ -1,5 +1,6 @@
 /**
- * SVG → pen-down polylines in mm (y up, the page's bottom-left corner at 0, 0).
+ * SVG → pen-down polylines in mm on the page (y down, as in the file and on the
+ * bed; the page's top-left corner at 0, 0).
  *
  * Libraries:
  * - The XML is parsed by @xmldom/xmldom, not the page's DOMParser: the import runs

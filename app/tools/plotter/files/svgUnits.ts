@@ -58,15 +58,16 @@ export function rootLengthMm(text: string | null): number | null {
 }
 
 /**
- * The affine map from the root's user units to mm with y up (the machine's way):
+ * The affine map from the root's user units to mm on the page, y down as in the
+ * file (the machine's way too: x right, y down the bed, as saxi and AxiDraw lay a
+ * drawing on the bed, so a drawing keeps its look and its page's top-left corner):
  * x' = a·x + c·y + e, y' = b·x + d·y + f, as svgpath's `matrix([a, b, c, d, e, f])`.
  *
  * With a viewBox (minX minY w h) and a viewport W × H mm: scale sx = W/w,
  * sy = H/h, then preserveAspectRatio ("xMidYMid meet" by default) makes them
  * equal (the smaller for meet, the larger for slice) and aligns the box in the
  * viewport. Without width/height the viewport is the viewBox in px; without a
- * viewBox, user units are px. Finally y is flipped about the viewport's height, so
- * the page's bottom-left corner is (0, 0) and the drawing looks as on screen.
+ * viewBox, user units are px. The page's top-left corner is (0, 0).
  */
 export function rootMatrix(
   width: string | null,
@@ -77,10 +78,7 @@ export function rootMatrix(
   const px = MM_PER_UNIT.px;
   let W = rootLengthMm(width);
   let H = rootLengthMm(height);
-  if (!viewBox) {
-    const Wmm = W ?? 0, Hmm = H ?? 0;
-    return { matrix: [px, 0, 0, -px, 0, Hmm], width_mm: Wmm, height_mm: Hmm };
-  }
+  if (!viewBox) return { matrix: [px, 0, 0, px, 0, 0], width_mm: W ?? 0, height_mm: H ?? 0 };
   const [vx, vy, vw, vh] = viewBox;
   if (W === null && H === null) {
     W = vw * px;
@@ -99,9 +97,9 @@ export function rootMatrix(
     tx = ((W as number) - vw * s) * fx;
     ty = ((H as number) - vh * s) * fy;
   }
-  // mm, y down: X = sx·(x − vx) + tx, Y = sy·(y − vy) + ty; then y up: Y' = H − Y.
+  // mm: X = sx·(x − vx) + tx, Y = sy·(y − vy) + ty.
   return {
-    matrix: [sx, 0, 0, -sy, tx - sx * vx, (H as number) - ty + sy * vy],
+    matrix: [sx, 0, 0, sy, tx - sx * vx, ty - sy * vy],
     width_mm: W as number,
     height_mm: H as number,
   };
