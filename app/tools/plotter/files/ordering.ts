@@ -12,10 +12,10 @@
  *   is the shorter of the two: the travel is never longer than the file's order.
  *
  * Both keep every segment of the drawing (as an unordered pair of points); see
- * ordering.property.test.ts. The nearest-end search is a scan, O(n²) over n paths:
- * a few thousand paths take milliseconds in the worker; vpype uses a spatial
- * index for its larger drawings.
+ * ordering.property.test.ts. The nearest-end searches go through a grid of the
+ * free ends (endpointGrid.ts), as vpype's go through a spatial index.
  */
+import { EndpointGrid } from './endpointGrid.ts';
 import { pointCount, reversed, travelLength, type PlotPath } from './paths.ts';
 
 /** mm: the default join tolerance (vpype's linemerge default is 0.05 mm). */
@@ -60,45 +60,52 @@ function join(a: PlotPath, b: PlotPath): PlotPath {
   return { points, speeds, dwells };
 }
 
+/** x, y of each path's first point (end id 2i) and last point (2i + 1). */
+function endsOf(paths: readonly PlotPath[]): Float64Array {
+  const ends = new Float64Array(4 * paths.length);
+  paths.forEach((p, i) => {
+    const q = p.points;
+    ends.set([q[0], q[1], q[q.length - 2], q[q.length - 1]], 4 * i);
+  });
+  return ends;
+}
+
 /**
  * Joins paths whose ends touch within `tolerance` mm. Paths are taken in order;
  * each grows at its end, then at its start, while a free path touches there.
  */
 export function mergePaths(paths: readonly PlotPath[], tolerance: number): PlotPath[] {
-  const used = new Uint8Array(paths.length);
-  const out: PlotPath[] = [];
-  const tol2 = tolerance * tolerance;
-  /** The free path with an end within the tolerance of (x, y): its index and whether it must be reversed to start there. */
-  const touching = (x: number, y: number): [number, boolean] | null => {
-    let best = -1, bestD2 = Infinity, flip = false;
-    for (let j = 0; j < paths.length; j++) {
-      if (used[j]) continue;
-      const p = paths[j].points;
-      const d0 = (p[0] - x) ** 2 + (p[1] - y) ** 2;
-      const d1 = (p[p.length - 2] - x) ** 2 + (p[p.length - 1] - y) ** 2;
-      if (d0 <= tol2 && d0 < bestD2) [best, bestD2, flip] = [j, d0, false];
-      if (d1 <= tol2 && d1 < bestD2) [best, bestD2, flip] = [j, d1, true];
-    }
-    return best >= 0 ? [best, flip] : null;
+  const grid = new EndpointGrid(endsOf(paths));
+  const take = (i: number) => {
+    grid.remove(2 * i);
+    grid.remove(2 * i + 1);
   };
+  const out: PlotPath[] = [];
+  const used = new Uint8Array(paths.length);
   for (let i = 0; i < paths.length; i++) {
     if (used[i]) continue;
     used[i] = 1;
+    take(i);
     let path = paths[i];
     for (;;) {
       const [x, y] = last(path);
-      const t = touching(x, y);
-      if (!t) break;
-      used[t[0]] = 1;
-      path = join(path, t[1] ? reversed(paths[t[0]]) : paths[t[0]]);
+      const end = grid.nearest(x, y, tolerance);
+      if (end < 0) break;
+      const j = end >> 1;
+      used[j] = 1;
+      take(j);
+      // Its first point touches: drawn as it is; its last: drawn reversed.
+      path = join(path, end & 1 ? reversed(paths[j]) : paths[j]);
     }
     for (;;) {
       const [x, y] = first(path);
-      const t = touching(x, y);
-      if (!t) break;
-      used[t[0]] = 1;
-      // The other path ends here: it goes first (reversed if it starts here).
-      path = join(t[1] ? paths[t[0]] : reversed(paths[t[0]]), path);
+      const end = grid.nearest(x, y, tolerance);
+      if (end < 0) break;
+      const j = end >> 1;
+      used[j] = 1;
+      take(j);
+      // The other path ends here and goes first (reversed if it starts here).
+      path = join(end & 1 ? paths[j] : reversed(paths[j]), path);
     }
     out.push(path);
   }
@@ -110,29 +117,21 @@ export function mergePaths(paths: readonly PlotPath[], tolerance: number): PlotP
  * nearest neighbour, or the file's order if that is no longer.
  */
 export function sortPaths(paths: readonly PlotPath[], start: readonly [number, number]): PlotPath[] {
-  const n = paths.length;
-  const ends = new Float64Array(4 * n);
-  for (let i = 0; i < n; i++) {
-    const p = paths[i].points;
-    ends.set([p[0], p[1], p[p.length - 2], p[p.length - 1]], 4 * i);
-  }
-  const used = new Uint8Array(n);
+  const ends = endsOf(paths);
+  const grid = new EndpointGrid(ends);
   const greedy: PlotPath[] = [];
   let x = start[0], y = start[1];
-  for (let k = 0; k < n; k++) {
-    let best = -1, bestD2 = Infinity, flip = false;
-    for (let j = 0; j < n; j++) {
-      if (used[j]) continue;
-      const d0 = (ends[4 * j] - x) ** 2 + (ends[4 * j + 1] - y) ** 2;
-      const d1 = (ends[4 * j + 2] - x) ** 2 + (ends[4 * j + 3] - y) ** 2;
-      if (d0 < bestD2) [best, bestD2, flip] = [j, d0, false];
-      if (d1 < bestD2) [best, bestD2, flip] = [j, d1, true];
-    }
-    used[best] = 1;
-    const p = flip ? reversed(paths[best]) : paths[best];
-    greedy.push(p);
-    x = flip ? ends[4 * best] : ends[4 * best + 2];
-    y = flip ? ends[4 * best + 1] : ends[4 * best + 3];
+  for (let k = 0; k < paths.length; k++) {
+    const end = grid.nearest(x, y);
+    const j = end >> 1;
+    grid.remove(2 * j);
+    grid.remove(2 * j + 1);
+    // Reached at its last point: drawn reversed, and left at its first.
+    const flip = (end & 1) === 1;
+    greedy.push(flip ? reversed(paths[j]) : paths[j]);
+    const leave = flip ? 4 * j : 4 * j + 2;
+    x = ends[leave];
+    y = ends[leave + 1];
   }
   return travelLength(greedy, start) <= travelLength(paths, start) ? greedy : [...paths];
 }
