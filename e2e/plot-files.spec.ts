@@ -71,7 +71,8 @@ test('an SVG: preview, exact plot time, plot, and the ink matches the file', asy
 
   // The source, placed as the preview placed it (true size, centred on the bed).
   const source = arrange(importSvg('plot-shapes.svg', readFileSync(SVG_FIXTURE, 'utf8')).paths, DEFAULT_ARRANGEMENT, BED, [0, 0]).paths.map((p) => p.points);
-  // The as-drawn SVG comes from the plotter tab (the simulated pen's ink).
+  // The as-drawn SVG comes from the plotter tab (the simulated pen's ink; the livedraw side of the tool).
+  await expect(page.getByTestId('tab-plotter'), 'the Plotter tab, whose "Save as drawn" gives the ink').toBeVisible({ timeout: 5000 });
   await page.getByTestId('tab-plotter').click();
   const download = page.waitForEvent('download');
   await page.getByTestId('plotter-save-drawn').click();

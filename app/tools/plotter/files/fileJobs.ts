@@ -81,9 +81,14 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
     }
   }
 
-  /** A new author (or none): the plot time depends on its position and its links. */
+  /**
+   * A new author (or none), perhaps with a new configuration: the plot time depends
+   * on its position, limits and links, and a G-code file's feeds on its top speed.
+   */
   authorChanged(_maxl: Maxl | null): void {
-    if (this.drawing) this.replan();
+    if (!this.drawing) return;
+    if (this.drawing.kind === 'gcode' && this.importSettings) this.read(this.drawing.name, this.text, this.importSettings);
+    this.replan();
   }
 
   /** STOP: a running plot is the job runner's, which halts it; nothing waits here. */
