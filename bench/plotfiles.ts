@@ -8,7 +8,9 @@
  * Figures, per drawing (named in the JSON):
  * - travelFileOrder_mm: pen-up travel from (0, 0) through the paths in the file's order;
  * - travelPlanned_mm: the same after linemerge (0.05 mm) and linesort (ordering.ts);
- * - plotTime_s: planPath's duration of the job's moves (what the panel shows);
+ * - plotTime_s: planPath's duration of the job's moves, with no link floor;
+ * - plotTimeOnLink_s (fixtures only): the same with the simulated link's floor on segment
+ *   durations (linkFloor_us, maxl.feedLimit): what the panel shows on that machine;
  * - queuePlan_s: the queue's own plan of the same moves (all appended, planned to rest);
  * - simRun_s (fixtures only): first segment's start to last segment's end as transmitted
  *   to the simulated Blot (real firmware in wasm, virtual time);
@@ -43,8 +45,10 @@ function queuePlan(moves: readonly Move[]): number {
   return maxl.queue.segments().reduce((t, s) => t + s.duration_s, 0);
 }
 
-async function simulate(moves: Move[], source: PlotPath[]): Promise<{ simRun_s: number; inkHausdorff_mm: number }> {
+async function simulate(moves: Move[], source: PlotPath[]): Promise<{ simRun_s: number; inkHausdorff_mm: number; plotTimeOnLink_s: number; minSegment_us: number }> {
   const b = await startMachine(preset, { sim: { outputLogSize: 200_000 } });
+  const minSegment_us = b.maxl.feedLimit?.minSegment_us ?? 0;
+  const plotTimeOnLink_s = plotTime(moves, preset.config.motionAxes, [...START], preset.config.limits, minSegment_us);
   const sent: Segment[] = [];
   b.maxl.queue.subscribe((e) => {
     if (e.type === 'transmitted') sent.push(...e.segments);
@@ -52,6 +56,8 @@ async function simulate(moves: Move[], source: PlotPath[]): Promise<{ simRun_s: 
   await runJob(b, moves);
   const ink = (b.sim.plant.pen?.strokes ?? []).map((s) => Float64Array.from(s.x.flatMap((x, i) => [x, s.y[i]])));
   return {
+    plotTimeOnLink_s,
+    minSegment_us,
     simRun_s: (sent[sent.length - 1].endTime_us - sent[0].startTime_us) * 1e-6,
     inkHausdorff_mm: hausdorff(
       ink,
@@ -74,6 +80,8 @@ async function measure(paths: PlotPath[], run: boolean, arrangement: Arrangement
   };
   if (run) {
     const sim = await simulate(moves, placed);
+    out.plotTimeOnLink_s = round(sim.plotTimeOnLink_s, 4);
+    out.linkFloor_us = round(sim.minSegment_us, 1);
     out.simRun_s = round(sim.simRun_s, 4);
     out.inkHausdorff_mm = round(sim.inkHausdorff_mm, 4);
   }
