@@ -11,6 +11,7 @@
  */
 import type { MaxlConfig, TransformConfig } from '../../core/index.ts';
 import type { LightpaintCommand, LightpaintEvent } from '../tools/lightpaint/protocol.ts';
+import type { FileCommand, FileEvent } from '../tools/plotter/files/protocol.ts';
 
 // ---------------------------------------------------------------------------
 // Shared shapes
@@ -205,9 +206,9 @@ export interface Snapshot {
 // The tools (app/tools/<name>/protocol.ts): each command and event carries `tool`.
 
 /** Every tool's commands. */
-export type ToolCommand = LightpaintCommand;
+export type ToolCommand = LightpaintCommand | FileCommand;
 /** Every tool's events. */
-export type ToolEvent = LightpaintEvent;
+export type ToolEvent = LightpaintEvent | FileEvent;
 
 // ---------------------------------------------------------------------------
 // main → worker

@@ -1,0 +1,107 @@
+/**
+ * The worker's file module against a real author on the Blot's configuration (no
+ * links: the job itself is the workbench's, seen here as what `startJob` is
+ * given): what it posts for a file, a bad file and a drawing too large, and the
+ * plot time it posts and hands to the job equal to planPath's duration of the
+ * very moves it hands over.
+ */
+import { readFileSync } from 'node:fs';
+import { describe, expect, it } from 'vitest';
+import { createMAXL, planPath } from '../../../../core/index.ts';
+import { blotPlotter } from '../../../../core/sim/presets/index.ts';
+import type { MoveJob } from '../../../worker/jobRunner.ts';
+import type { LogLevel, WorkerEvent } from '../../../worker/protocol.ts';
+import type { ToolContext } from '../../../worker/toolContext.ts';
+import { DEFAULT_ARRANGEMENT } from './arrange.ts';
+import { FileJobs } from './fileJobs.ts';
+import { pathMoves } from './plotJob.ts';
+import type { FileEvent, ImportSettings, PlotSettings } from './protocol.ts';
+
+const config = blotPlotter().config;
+const IMPORT: ImportSettings = { chordTolerance_mm: 0.02, gcodePen: 'auto', zThreshold_mm: 0 };
+const PLOT: PlotSettings = { arrangement: DEFAULT_ARRANGEMENT, merge: true, mergeTolerance_mm: 0.05, sort: true, drawSpeed: 40, travelSpeed: 120, penDelayDown_s: 0.15, penDelayUp_s: 0.12 };
+
+function setup() {
+  const maxl = createMAXL(config, { initialPosition: [7, 3] });
+  const posted: FileEvent[] = [];
+  const jobs: MoveJob[] = [];
+  const logs: Array<{ level: LogLevel; code: string; message: string }> = [];
+  const ctx = {
+    maxl,
+    phase: 'ready',
+    sim: null,
+    presetId: 'blotPlotter',
+    config,
+    origin: [0, 0],
+    scheduler: maxl.scheduler,
+    claim: () => true,
+    release: () => {},
+    startJob: (job: MoveJob) => {
+      jobs.push(job);
+      return true;
+    },
+    log: (level: LogLevel, code: string, message: string) => logs.push({ level, code, message }),
+    post: (e: WorkerEvent) => posted.push(e as FileEvent),
+  } as unknown as ToolContext;
+  const files = new FileJobs(ctx);
+  const last = <T extends FileEvent['type']>(type: T) => posted.filter((e) => e.type === type).at(-1) as Extract<FileEvent, { type: T }> | undefined;
+  return { files, posted, jobs, logs, last };
+}
+
+const svg = readFileSync('e2e/fixtures/plot-shapes.svg', 'utf8');
+
+describe('FileJobs', () => {
+  it('loads a file, previews it with its travel and plot time, and plots exactly what it timed', () => {
+    const { files, jobs, last } = setup();
+    files.handle({ tool: 'plotter', type: 'file-load', name: 'plot-shapes.svg', text: svg, import: IMPORT, plot: PLOT });
+    expect(last('file-loaded')?.summary).toMatchObject({ name: 'plot-shapes.svg', kind: 'svg', paths: 4 });
+    const preview = last('file-preview')!;
+    expect(preview.stats.fits).toBe(true);
+    expect(preview.stats.travelAfter_mm).toBeLessThan(preview.stats.travelBefore_mm);
+    expect(preview.layer.strokes).toHaveLength(4);
+    expect(preview.layer.travel).toHaveLength(4);
+    // The first travel starts where the pen is.
+    expect(Array.from(preview.layer.travel[0].slice(0, 2))).toEqual([7, 3]);
+
+    files.handle({ tool: 'plotter', type: 'file-plot' });
+    expect(jobs).toHaveLength(1);
+    const job = jobs[0];
+    const t = planPath([7, 3], pathMoves(job.moves, config.motionAxes, [7, 3]), config.limits).duration;
+    expect(job.planned_s).toBe(t);
+    expect(preview.stats.plotTime_s).toBe(t);
+    expect(last('file-plot')).toMatchObject({ started: true, planned_s: t });
+  });
+
+  it('a bad file is refused with its line, and the file before it stays', () => {
+    const { files, jobs, last, logs } = setup();
+    files.handle({ tool: 'plotter', type: 'file-load', name: 'plot-shapes.svg', text: svg, import: IMPORT, plot: PLOT });
+    files.handle({ tool: 'plotter', type: 'file-load', name: 'bad.svg', text: '<svg xmlns="http://www.w3.org/2000/svg">\n<circle r="-1"/></svg>', import: IMPORT, plot: PLOT });
+    expect(last('file-error')).toMatchObject({ name: 'bad.svg', line: 2 });
+    expect(last('file-error')?.message).toMatch(/“bad.svg” was not loaded: line 2: <circle> has a negative r/);
+    expect(logs.at(-1)).toMatchObject({ level: 'error', code: 'FILE_INVALID' });
+    files.handle({ tool: 'plotter', type: 'file-plot' });
+    expect(jobs[0].name).toBe('plot-shapes.svg');
+  });
+
+  it('a drawing larger than the bed is said, not plotted, until it is fitted', () => {
+    const { files, jobs, last } = setup();
+    const big = { ...PLOT, arrangement: { ...DEFAULT_ARRANGEMENT, scale: 5 } };
+    files.handle({ tool: 'plotter', type: 'file-load', name: 'plot-shapes.svg', text: svg, import: IMPORT, plot: big });
+    expect(last('file-preview')?.stats.fits).toBe(false);
+    expect(last('file-preview')?.stats.notes.join(' ')).toMatch(/leaves the bed's soft limits: fit it.*nothing is clipped/);
+    files.handle({ tool: 'plotter', type: 'file-plot' });
+    expect(jobs).toHaveLength(0);
+    expect(last('file-plot')).toMatchObject({ started: false });
+    files.handle({ tool: 'plotter', type: 'file-settings', import: IMPORT, plot: { ...big, arrangement: { ...big.arrangement, fit: true } } });
+    expect(last('file-preview')?.stats.fits).toBe(true);
+    files.handle({ tool: 'plotter', type: 'file-plot' });
+    expect(jobs).toHaveLength(1);
+  });
+
+  it('G-code: warnings with their lines in the summary; speeds above the machine’s are said', () => {
+    const { files, last } = setup();
+    files.handle({ tool: 'plotter', type: 'file-load', name: 'plot-arcs.gcode', text: readFileSync('e2e/fixtures/plot-arcs.gcode', 'utf8'), import: IMPORT, plot: { ...PLOT, drawSpeed: 500 } });
+    expect(last('file-loaded')?.warnings.map((w) => w.line)).toEqual([9, 12, 15, 16]);
+    expect(last('file-preview')?.stats.notes).toContain("The pen-down speed 500 mm/s is above the machine's 120 mm/s: it runs at 120 mm/s.");
+  });
+});

@@ -1,0 +1,129 @@
+/**
+ * Plotting files on the simulated Blot plotter:
+ * - an SVG with a transformed group, a circle, a cubic Bézier and an arc: preview
+ *   (travel before and after ordering, the exact plot time), plot to completion,
+ *   then the as-drawn SVG (the simulated pen's ink) matches the source geometry,
+ *   placed the same way, within the chord tolerance + 0.1 mm (Hausdorff);
+ * - a G-code file with G2/G3 and words the importer does not read: each is listed
+ *   with its line number, and the plot completes;
+ * - a malformed SVG is refused, naming the line, and the file before it stays.
+ */
+import { readFileSync } from 'node:fs';
+import { expect, test, type Page } from '@playwright/test';
+import { arrange, DEFAULT_ARRANGEMENT } from '../app/tools/plotter/files/arrange.ts';
+import { DEFAULT_CHORD_TOLERANCE_MM } from '../app/tools/plotter/files/flatten.ts';
+import { hausdorff } from '../app/tools/plotter/files/hausdorff.ts';
+import { importSvg } from '../app/tools/plotter/files/svgImport.ts';
+import { dataNumber, openWorkbench, screenshot } from './support/workbench.ts';
+
+const SVG_FIXTURE = 'e2e/fixtures/plot-shapes.svg';
+const GCODE_FIXTURE = 'e2e/fixtures/plot-arcs.gcode';
+/** The Blot preset's soft limits, mm. */
+const BED = { minX: 0, minY: 0, maxX: 125, maxY: 125 };
+
+async function useBlot(page: Page): Promise<void> {
+  await openWorkbench(page);
+  await page.getByTestId('machine-menu').click();
+  await page.getByTestId('preset-blotPlotter').click();
+  await expect(page.getByTestId('machine-menu')).toContainText('blotPlotter');
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+}
+
+async function plotToCompletion(page: Page): Promise<{ elapsed_s: number }> {
+  await page.getByTestId('file-plot').click();
+  const progress = page.getByTestId('job-progress');
+  await expect(progress).toHaveAttribute('data-phase', 'running');
+  await expect(progress).toHaveAttribute('data-phase', 'done', { timeout: 60_000 });
+  const job = await page.evaluate(() => (window as unknown as { maxlWorkbench: { job: { elapsed_s: number } | null } }).maxlWorkbench.job);
+  return { elapsed_s: job?.elapsed_s ?? NaN };
+}
+
+/** The polylines of an SVG that the plotter saved: machine mm, x right, y down (its `points` are machine coordinates). */
+function savedPolylines(svg: string): Float64Array[] {
+  return [...svg.matchAll(/<polyline points="([^"]*)"/g)].map((m) => Float64Array.from(m[1].trim().split(/[\s,]+/).map(Number)));
+}
+
+test('an SVG: preview, exact plot time, plot, and the ink matches the file', async ({ page }) => {
+  await useBlot(page);
+  await page.getByTestId('tab-plot-files').click();
+  await page.getByTestId('plot-file-input').setInputFiles(SVG_FIXTURE);
+
+  const summary = page.getByTestId('file-summary');
+  await expect(summary).toHaveAttribute('data-kind', 'svg');
+  // The rounded rect, the circle, the cubic and the arc; not the circle in <defs>.
+  await expect(summary).toHaveAttribute('data-paths', '4');
+  await expect(page.getByTestId('file-warnings')).toHaveCount(0);
+  await expect(page.getByTestId('plot-time')).toHaveAttribute('data-value', /^\d/);
+  const planned = await dataNumber(page, 'plot-time');
+  const before = await dataNumber(page, 'travel-before');
+  const after = await dataNumber(page, 'travel-after');
+  console.log(`[plot-files] SVG: travel ${before.toFixed(1)} mm in the file's order, ${after.toFixed(1)} mm as planned; plot time ${planned.toFixed(3)} s`);
+  // The fixture's order sends the pen back and forth; sorting cuts that.
+  expect(after).toBeLessThan(before);
+  await page.getByTestId('file-show-before').check();
+  await screenshot(page, 'plot-files-svg-preview');
+
+  const { elapsed_s } = await plotToCompletion(page);
+  console.log(`[plot-files] SVG: ran ${elapsed_s.toFixed(3)} s of motion against ${planned.toFixed(3)} s planned`);
+  // The ETA's basis is the plan; the run is the same moves through the bounded queue.
+  expect(Math.abs(elapsed_s - planned)).toBeLessThan(0.02 * planned);
+  await expect(page.locator('[data-testid=log-entry][data-code=DEVICE_REFUSED]')).toHaveCount(0);
+
+  // The source, placed as the preview placed it (true size, centred on the bed).
+  const source = arrange(importSvg('plot-shapes.svg', readFileSync(SVG_FIXTURE, 'utf8')).paths, DEFAULT_ARRANGEMENT, BED, [0, 0]).paths.map((p) => p.points);
+  // The as-drawn SVG comes from the plotter tab (the simulated pen's ink; the livedraw side of the tool).
+  await expect(page.getByTestId('tab-plotter'), 'the Plotter tab, whose "Save as drawn" gives the ink').toBeVisible({ timeout: 5000 });
+  await page.getByTestId('tab-plotter').click();
+  const download = page.waitForEvent('download');
+  await page.getByTestId('plotter-save-drawn').click();
+  const drawnPath = await (await download).path();
+  const drawn = savedPolylines(readFileSync(drawnPath, 'utf8'));
+  expect(drawn.length).toBeGreaterThanOrEqual(4);
+  const h = hausdorff(drawn, source, 0.01);
+  console.log(`[plot-files] SVG: Hausdorff(as drawn, source) = ${h.toFixed(4)} mm`);
+  expect(h).toBeLessThanOrEqual(DEFAULT_CHORD_TOLERANCE_MM + 0.1);
+});
+
+test('a G-code file with arcs and unknown words: warnings with line numbers, the plot completes', async ({ page }) => {
+  await useBlot(page);
+  await page.getByTestId('tab-plot-files').click();
+  await page.getByTestId('plot-file-input').setInputFiles(GCODE_FIXTURE);
+  await expect(page.getByTestId('file-summary')).toHaveAttribute('data-kind', 'gcode');
+  await expect(page.getByTestId('file-summary')).toHaveAttribute('data-paths', '2');
+
+  const warnings = page.getByTestId('file-warning');
+  await expect(page.locator('[data-testid=file-warning][data-line="15"]')).toContainText('T1 is not supported');
+  await expect(page.locator('[data-testid=file-warning][data-line="16"]')).toContainText('G28 is not supported');
+  await expect(page.locator('[data-testid=file-warning][data-line="9"]')).toContainText("above the machine's 120 mm/s");
+  await expect(page.locator('[data-testid=file-warning][data-line="12"]')).toContainText('S on M3');
+  await expect(warnings).toHaveCount(4);
+  const planned = await dataNumber(page, 'plot-time');
+  console.log(`[plot-files] G-code: travel ${(await dataNumber(page, 'travel-before')).toFixed(1)} mm in the file's order, ${(await dataNumber(page, 'travel-after')).toFixed(1)} mm as planned; plot time ${planned.toFixed(3)} s`);
+  await screenshot(page, 'plot-files-gcode-preview');
+
+  const { elapsed_s } = await plotToCompletion(page);
+  console.log(`[plot-files] G-code: ran ${elapsed_s.toFixed(3)} s of motion against ${planned.toFixed(3)} s planned`);
+  expect(Math.abs(elapsed_s - planned)).toBeLessThan(0.02 * planned);
+});
+
+test('a malformed SVG is refused with its line, and the file before it stays', async ({ page }) => {
+  await useBlot(page);
+  await page.getByTestId('tab-plot-files').click();
+  await page.getByTestId('plot-file-input').setInputFiles(SVG_FIXTURE);
+  await expect(page.getByTestId('file-summary')).toContainText('plot-shapes.svg');
+  await page.getByTestId('plot-file-input').setInputFiles({
+    name: 'broken.svg',
+    mimeType: 'image/svg+xml',
+    buffer: Buffer.from('<svg xmlns="http://www.w3.org/2000/svg">\n<path d="M0 0 L10 10"/>\n<path d="M0 0 L 5 q"/>\n</svg>\n'),
+  });
+  await expect(page.getByTestId('file-error')).toContainText('line 3: <path> has bad path data');
+  await expect(page.getByTestId('file-summary')).toContainText('plot-shapes.svg');
+  // Too large: said, with Fit offered; fitting makes it plottable.
+  await page.getByTestId('file-scale').fill('5');
+  await page.getByTestId('file-scale').dispatchEvent('change');
+  await expect(page.getByTestId('file-too-large')).toBeVisible();
+  await expect(page.getByTestId('file-plot')).toBeDisabled();
+  await page.getByTestId('file-offer-fit').click();
+  await expect(page.getByTestId('file-too-large')).toHaveCount(0);
+  await expect(page.getByTestId('file-plot')).toBeEnabled();
+});
