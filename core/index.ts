@@ -3,7 +3,16 @@
  * Node, in a Web Worker or in a page.
  */
 export { createMAXL, Maxl, type MaxlOptions } from './maxl.ts';
-export { planPath, type PlannedPath, type PlannedSegment, type PathMove, type PathSample } from './plan/planPath.ts';
+export {
+  planPath,
+  type PlannedPath,
+  type PlannedSegment,
+  type PathMove,
+  type PathLine,
+  type PathDwell,
+  type PathSample,
+  type PlanPathOptions,
+} from './plan/planPath.ts';
 export { MaxlError, type MaxlErrorCode } from './errors.ts';
 export { resolveConfig } from './config/validate.ts';
 export type {
@@ -16,7 +25,7 @@ export type {
   TrackKind,
 } from './config/types.ts';
 export type { Move, LinearMove, DwellMove } from './trajectory/moves.ts';
-export { isDwell } from './trajectory/moves.ts';
+export { isDwell, MAX_DWELL_S } from './trajectory/moves.ts';
 export type { MoveEvents, EvaluatorState, EventEvaluatorSpec, EventTrack } from './trajectory/events.ts';
 export { TrajectoryQueue, type MoveReceipt, type QueueEvent, type QueueListener } from './trajectory/queue.ts';
 export { Segment, type SegmentState } from './trajectory/segment.ts';

@@ -137,6 +137,14 @@ export function trapezoidTiming(length: number, entry2: number, exit2: number, c
   return timing;
 }
 
+/**
+ * A dwell's timing: one phase at rest, s(τ) = 0 with s′ = s″ = 0, lasting
+ * `seconds` (0 for an event-only move: the phase is an instant).
+ */
+export function dwellTiming(seconds: number): Timing {
+  return [0, seconds, 0, 0, 0, 0];
+}
+
 /** Writes a constant-acceleration phase at offset o; returns the offset after it. */
 function writePhase(timing: Timing, o: number, t0: number, duration: number, s0: number, v0: number, a0: number): number {
   timing[o] = t0;

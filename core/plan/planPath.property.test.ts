@@ -5,7 +5,7 @@
  */
 import { describe, expect, it } from 'vitest';
 import fc from 'fast-check';
-import { planPath, type LimitsConfig } from '../index.ts';
+import { createMAXL, planPath, type LimitsConfig, type PathMove } from '../index.ts';
 import { resolveLimits } from '../config/limits.ts';
 import { refDuration, refBlocks, refJunctionSpeeds2, refJunctionCap2, type RefLimits } from '../testing/referencePlanner.ts';
 
@@ -190,6 +190,96 @@ describe.each([2, 3])('planPath properties in %i axes', (axes) => {
         // Rounding in two independent float64 computations stays far below 1e-8; a
         // misjudged junction or a missed constraint shows up far above it.
         expect(Math.abs(p.duration - reference)).toBeLessThanOrEqual(1e-8 * (1 + reference));
+      }),
+    );
+  });
+});
+
+/**
+ * Dwells: a path cut by dwells is planned as its pieces, each from rest to rest.
+ * The reference plans every piece between dwells on its own (the O(n²) planner),
+ * so a dwell that let speed through, or a planner that stopped anywhere else,
+ * shows in the total.
+ */
+describe.each([2, 3])('planPath with dwells in %i axes', (axes) => {
+  const dwellArb = fc.oneof(fc.constant(0), fc.double({ min: 0, max: 2, noNaN: true }));
+  const input = fc.record({
+    path: pathArb(axes),
+    limits: limitsArb(axes),
+    // After which moves a dwell comes (indices may repeat: dwells in a row), and how long each is.
+    dwells: fc.array(fc.record({ after: fc.nat(30), seconds: dwellArb }), { maxLength: 6 }),
+  });
+
+  function withDwells(path: { points: number[][]; speeds: (number | undefined)[] }, dwells: { after: number; seconds: number }[]) {
+    const moves: PathMove[] = [];
+    /** The pieces between dwells, as point lists and speeds, for the reference. */
+    const pieces: { points: number[][]; speeds: (number | undefined)[] }[] = [{ points: [path.points[0]], speeds: [] }];
+    const dwellsAt = (k: number) => dwells.filter((d) => Math.min(d.after, path.points.length - 1) === k);
+    const addDwells = (k: number, at: number[]) => {
+      for (const d of dwellsAt(k)) {
+        moves.push({ dwell_s: d.seconds });
+        pieces.push({ points: [at], speeds: [] });
+      }
+    };
+    addDwells(0, path.points[0]);
+    for (let k = 1; k < path.points.length; k++) {
+      moves.push({ end: path.points[k], maxVelocity: path.speeds[k - 1] });
+      const piece = pieces[pieces.length - 1];
+      piece.points.push(path.points[k]);
+      piece.speeds.push(path.speeds[k - 1]);
+      addDwells(k, path.points[k]);
+    }
+    return { moves, pieces, total: dwells.reduce((t, d) => t + d.seconds, 0) };
+  }
+
+  it('rests before and after every dwell, holds there for exactly its time, and is optimal between', () => {
+    fc.assert(
+      fc.property(input, ({ path, limits, dwells }) => {
+        const { moves, pieces, total } = withDwells(path, dwells);
+        const p = planPath(path.points[0], moves, limits);
+        const l = resolved(limits, axes);
+        const lines = p.segments.filter((s) => !s.dwell);
+        expect(p.segments.length - lines.length).toBe(dwells.length);
+        for (const [k, seg] of p.segments.entries()) {
+          if (!seg.dwell) continue;
+          expect(seg.length).toBe(0);
+          expect(seg.end).toEqual(seg.start);
+          expect(seg.entryVelocity).toBe(0);
+          expect(seg.exitVelocity).toBe(0);
+          expect(seg.peakVelocity).toBe(0);
+          if (k > 0) expect(p.segments[k - 1].exitVelocity).toBe(0);
+          if (k + 1 < p.segments.length) expect(p.segments[k + 1].entryVelocity).toBe(0);
+          // It holds its position, at rest, throughout.
+          for (const f of [0, 0.5, 1]) {
+            const s = p.sample(seg.startTime + f * seg.duration);
+            s.position.forEach((v, i) => expect(v).toBeCloseTo(seg.start[i], 9));
+            s.velocity.forEach((v) => expect(Math.abs(v)).toBe(0));
+          }
+        }
+        // Exact dwell times, in order.
+        const planned = p.segments.filter((s) => s.dwell).map((s) => s.duration);
+        expect(planned).toEqual(moves.flatMap((m) => ('dwell_s' in m ? [m.dwell_s] : [])));
+        // Optimal between dwells: each piece from rest to rest, by the reference planner.
+        const reference = pieces.reduce((t, piece) => t + refDuration(piece.points, l, piece.speeds.map((s) => s ?? Infinity)), total);
+        expect(Math.abs(p.duration - reference)).toBeLessThanOrEqual(1e-8 * (1 + reference));
+      }),
+    );
+  });
+
+  it('applies the queue’s duration floor: the same durations as the queue on that link', () => {
+    fc.assert(
+      fc.property(input, fc.double({ min: 0, max: 20_000, noNaN: true }), ({ path, limits, dwells }, floor_us) => {
+        const { moves } = withDwells(path, dwells);
+        const p = planPath(path.points[0], moves, limits, { minSegment_us: floor_us });
+        for (const seg of p.segments) if (!seg.dwell) expect(seg.duration).toBeGreaterThanOrEqual(floor_us * 1e-6 * (1 - 1e-9));
+        // The queue, given the same floor and the same moves, plans the same segments.
+        const axisNames = path.points[0].map((_, i) => `a${i}`);
+        const maxl = createMAXL({ motionAxes: axisNames, limits }, { initialPosition: path.points[0] });
+        maxl.queue.setMinSegmentDuration(floor_us * 1e-6);
+        for (const m of moves) maxl.queue.append('dwell_s' in m ? { dwell_s: m.dwell_s } : { endPosition: m.end, maxVelocity: m.maxVelocity });
+        maxl.queue.planToRest();
+        const queued = maxl.queue.segments();
+        expect(queued.map((s) => s.duration_s)).toEqual(p.segments.map((s) => s.duration));
       }),
     );
   });

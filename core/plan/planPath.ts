@@ -2,14 +2,20 @@
  * planPath: the pure planning entry point. It plans a whole polyline at once,
  * with the same code the queue uses (the segments of moves.ts and the lookahead of
  * lookahead.ts), starting at rest at `start` and ending at rest at the last move's
- * end.
+ * end. Dwells (`{ dwell_s }`) hold the position at rest; the plan comes to rest
+ * before each and starts from rest after it, as the queue's does.
+ *
+ * With `minSegment_us` (a link's floor, net/linkFeedLimit.ts: pass `maxl.feedLimit`)
+ * every line segment is capped to last at least that long, exactly as the queue
+ * caps the segments it is given on that link (moves.ts floorCruise2), so the
+ * planned duration is the time the queue will run.
  */
 import { resolveLimits } from '../config/limits.ts';
 import type { LimitsConfig, ResolvedConfig } from '../config/types.ts';
 import { MaxlError } from '../errors.ts';
 import { phasesOf, timingDuration, type Phase } from './phases.ts';
 import { LookaheadPlanner } from './lookahead.ts';
-import { segmentsForMove, validateMove, type PathTail } from '../trajectory/moves.ts';
+import { segmentsForMove, tailAfter, validateMove, type Move, type PathTail } from '../trajectory/moves.ts';
 import { sampleTimeline, type TrajectorySample } from '../trajectory/tracks.ts';
 import type { Segment } from '../trajectory/segment.ts';
 
@@ -27,10 +33,12 @@ export interface PlannedSegment {
   exitVelocity: number;
   /** mm/s, the highest speed reached inside the segment */
   peakVelocity: number;
-  /** mm/s, the cap the planner had for this segment (limits and the move's maxVelocity) */
+  /** mm/s, the cap the planner had for this segment (limits, the move's maxVelocity, the link's floor; 0 for a dwell) */
   cruiseLimit: number;
-  /** mm/s², the acceleration limit along the segment */
+  /** mm/s², the acceleration limit along the segment (0 for a dwell, which has no direction) */
   accelerationLimit: number;
+  /** Whether this is a dwell: start = end, length 0, speed 0 throughout, lasting `duration`. */
+  dwell: boolean;
   phases: Phase[];
 }
 
@@ -50,17 +58,37 @@ export interface PlannedPath {
   sample(t: number): PathSample;
 }
 
-export interface PathMove {
+/** A straight move to `end`, at most `maxVelocity` mm/s. */
+export interface PathLine {
   end: number[];
   maxVelocity?: number;
 }
 
-export function planPath(start: number[], moves: PathMove[], limits: LimitsConfig): PlannedPath {
+/** Hold the position at rest for `dwell_s` s. */
+export interface PathDwell {
+  dwell_s: number;
+}
+
+export type PathMove = PathLine | PathDwell;
+
+export interface PlanPathOptions {
+  /**
+   * µs: the floor on every line segment's duration that the queue applies on a slow
+   * link (`maxl.feedLimit.minSegment_us`); 0 or absent for none.
+   */
+  minSegment_us?: number;
+}
+
+export function planPath(start: number[], moves: PathMove[], limits: LimitsConfig, options: PlanPathOptions = {}): PlannedPath {
   if (!Array.isArray(start) || start.length === 0) throw new MaxlError('MOVE_DIMENSION', 'must be a non-empty array of positions', 'start');
   start.forEach((v, i) => {
     if (typeof v !== 'number' || !Number.isFinite(v)) throw new MaxlError('MOVE_INVALID', `must be a finite number, got ${String(v)}`, `start[${i}]`);
   });
-  if (!Array.isArray(moves)) throw new MaxlError('MOVE_INVALID', 'must be an array of { end, maxVelocity? }', 'moves');
+  if (!Array.isArray(moves)) throw new MaxlError('MOVE_INVALID', 'must be an array of { end, maxVelocity? } or { dwell_s }', 'moves');
+  const floor_us = options.minSegment_us ?? 0;
+  if (typeof floor_us !== 'number' || !(floor_us >= 0) || !Number.isFinite(floor_us)) {
+    throw new MaxlError('MOVE_INVALID', `must be a finite duration ≥ 0 µs, got ${String(floor_us)}`, 'options.minSegment_us');
+  }
   const axes = start.map((_, i) => `axis${i}`);
   const config: ResolvedConfig = {
     motionAxes: axes,
@@ -78,7 +106,13 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
   let from = start;
   const validated = moves.map((m, i) => {
     try {
-      const v = validateMove(config, { endPosition: m?.end, maxVelocity: m?.maxVelocity }, from);
+      // A dwell that also gives `end` or `maxVelocity` is refused by validateMove, as in the queue.
+      const line = m as Partial<PathLine> | undefined;
+      const move: Move =
+        m !== null && typeof m === 'object' && 'dwell_s' in m
+          ? ({ dwell_s: m.dwell_s, endPosition: line?.end, maxVelocity: line?.maxVelocity } as Move)
+          : { endPosition: line?.end as number[], maxVelocity: line?.maxVelocity };
+      const v = validateMove(config, move, from);
       from = v.end;
       return v;
     } catch (err) {
@@ -89,15 +123,15 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
 
   const planner = new LookaheadPlanner<Segment>();
   const segments: Segment[] = [];
-  let tail: PathTail = { position: [...start], unit: null, cruise2: 0 };
+  const tail: PathTail = { position: [...start], unit: null, cruise2: 0 };
   let skipped = 0;
   validated.forEach((move, moveId) => {
-    const segs = segmentsForMove(config, move, tail, segments.length, moveId);
+    const segs = segmentsForMove(config, move, tail, segments.length, moveId, floor_us * 1e-6);
     if (segs.length === 0) skipped++;
     for (const seg of segs) {
       planner.append(seg);
       segments.push(seg);
-      tail = { position: seg.end, unit: seg.unit, cruise2: seg.cruise2 };
+      tailAfter(seg, tail);
     }
   });
   planner.planToRest();
@@ -117,7 +151,8 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
       exitVelocity: Math.sqrt(seg.exit2),
       peakVelocity: Math.max(...phases.map((p) => p.v0 + p.a0 * p.duration), ...phases.map((p) => p.v0)),
       cruiseLimit: Math.sqrt(seg.cruise2),
-      accelerationLimit: seg.accel,
+      accelerationLimit: seg.isDwell ? 0 : seg.accel,
+      dwell: seg.isDwell,
       phases,
     });
     t += duration;

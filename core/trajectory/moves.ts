@@ -1,8 +1,15 @@
 /**
- * From a move request (an end position, a speed cap, event values) to segments:
- * validation, soft limits, zero-length skipping, subdivision for nonlinear
+ * From a move request (an end position, a speed cap, event values; or a dwell) to
+ * segments: validation, soft limits, zero-length skipping, subdivision for nonlinear
  * transforms, and each segment's planner inputs (limits projected on its direction,
  * the junction cap with the segment before).
+ *
+ * A dwell is one segment of length 0 that holds its position at rest for its
+ * duration: start = end, a zero direction, entry and exit caps 0 (the planner
+ * brings the machine to rest before it and starts from rest after it), and one
+ * phase of speed 0 lasting `dwell_s`. A zero-length move that sets events is an
+ * event-only move: a dwell of 0 s, so that its events happen; one that sets none
+ * is skipped, as before.
  */
 import { MaxlError } from '../errors.ts';
 import { projectLimit } from '../config/limits.ts';
@@ -36,6 +43,14 @@ export function isDwell(move: Move): move is DwellMove {
 }
 
 /**
+ * The longest dwell, s. The wire times a segment in whole device µs and refuses a
+ * total of 2³¹ µs (2 147 s) or more, which would not compare wrap-safely
+ * (docs/protocol.md §4 TIMING); 2 000 s leaves room for the clock model's rate and
+ * its corrections. A longer wait is several dwells.
+ */
+export const MAX_DWELL_S = 2000;
+
+/**
  * A move that passed validation, not yet turned into segments. Its segments keep it
  * (as their `source`) for as long as they are queued.
  *
@@ -46,14 +61,18 @@ export function isDwell(move: Move): move is DwellMove {
  * full collection. Class instances carry no such allocation site.
  */
 export class ValidatedMove {
+  /** Where the move ends; for a dwell, where it was validated to start (a dwell holds wherever the path is). */
   readonly end: number[];
   readonly maxVelocity: number;
   readonly events: ResolvedEventSpec[];
+  /** s, for a dwell; null for a linear move. */
+  readonly dwell_s: number | null;
 
-  constructor(end: number[], maxVelocity: number, events: ResolvedEventSpec[]) {
+  constructor(end: number[], maxVelocity: number, events: ResolvedEventSpec[], dwell_s: number | null = null) {
     this.end = end;
     this.maxVelocity = maxVelocity;
     this.events = events;
+    this.dwell_s = dwell_s;
   }
 }
 
@@ -76,8 +95,8 @@ function finite(field: string, value: unknown): number {
  * bad input.
  */
 export function validateMove(config: ResolvedConfig, move: Move, from: readonly number[]): ValidatedMove {
-  if (move === null || typeof move !== 'object') throw new MaxlError('MOVE_INVALID', 'a move must be an object with an endPosition');
-  if (isDwell(move)) throw new MaxlError('MOVE_INVALID', 'dwells are not carried yet', 'dwell_s');
+  if (move === null || typeof move !== 'object') throw new MaxlError('MOVE_INVALID', 'a move must be an object with an endPosition, or a dwell with dwell_s');
+  if (isDwell(move)) return validateDwell(config, move, from);
   const axes = config.motionAxes;
   const target = move.endPosition;
   let end: number[];
@@ -122,6 +141,44 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
   return new ValidatedMove(end, maxVelocity, resolveMoveEvents(move.eventChannels, config.eventChannels));
 }
 
+/** A dwell holds wherever the path is: it takes no end position and no speed, and lasts 0 to MAX_DWELL_S s. */
+function validateDwell(config: ResolvedConfig, move: DwellMove, from: readonly number[]): ValidatedMove {
+  for (const field of ['endPosition', 'maxVelocity'] as const) {
+    if ((move as Partial<LinearMove>)[field] !== undefined) {
+      throw new MaxlError('MOVE_INVALID', `a dwell holds its position at rest: it takes no ${field} (give a linear move, then the dwell)`, field);
+    }
+  }
+  const dwell_s = finite('dwell_s', move.dwell_s);
+  if (dwell_s < 0) throw new MaxlError('MOVE_INVALID', `must be ≥ 0 s, got ${dwell_s}`, 'dwell_s');
+  if (dwell_s > MAX_DWELL_S) throw new MaxlError('MOVE_INVALID', `must be at most ${MAX_DWELL_S} s (what the wire times in one segment); chain dwells for longer`, 'dwell_s');
+  return new ValidatedMove([...from], 0, resolveMoveEvents(move.eventChannels, config.eventChannels), dwell_s);
+}
+
+/**
+ * The acceleration limit a dwell's segment carries. A dwell has no direction and
+ * covers no distance, so it never limits anything (2·a·0 = 0 in the planner); the
+ * value only has to be finite and positive for code that divides by it. The
+ * machine's weakest finite limit is both.
+ */
+function dwellAccel(config: ResolvedConfig): number {
+  let a = config.limits.maxAccel;
+  for (const v of config.limits.axisMaxAccel) if (v < a) a = v;
+  return a;
+}
+
+/** The one segment of a dwell of `dwell_s` s at `position`, from rest to rest. */
+function dwellSegment(config: ResolvedConfig, move: ValidatedMove, position: number[], dwell_s: number, id: number, moveId: number): Segment {
+  const zero = new Array<number>(position.length).fill(0);
+  const seg = new Segment(id, moveId, position, position, zero, 0, 0, move, dwell_s);
+  const actuators = actuatorPosition(config.transforms, position);
+  seg.actuatorStart = actuators;
+  seg.actuatorRate = actuators.length > 0 ? actuators.map(() => 0) : actuators;
+  seg.accel = dwellAccel(config);
+  seg.cruise2 = 0;
+  seg.maxEntry2 = 0;
+  return seg;
+}
+
 export function distance(a: readonly number[], b: readonly number[]): number {
   let d2 = 0;
   for (let i = 0; i < a.length; i++) {
@@ -139,9 +196,16 @@ function hasNonlinearTransform(config: ResolvedConfig): boolean {
 /** What the next segment needs to know of the one before it. */
 export interface PathTail {
   position: number[];
-  /** Unit direction of the last segment, or null after rest with no segment. */
+  /** Unit direction of the last segment, or null after rest (no segment yet, or a dwell). */
   unit: number[] | null;
   cruise2: number;
+}
+
+/** The path's tail after `seg`: a dwell leaves the machine at rest, so the next segment starts from rest. */
+export function tailAfter(seg: Segment, tail: PathTail): void {
+  tail.position = seg.end;
+  tail.unit = seg.isDwell ? null : seg.unit;
+  tail.cruise2 = seg.isDwell ? 0 : seg.cruise2;
 }
 
 /**
@@ -160,9 +224,11 @@ export function floorCruise2(cruise2: number, length: number, minDuration_s: num
 
 /**
  * Splits a validated move into segments (one, unless a nonlinear transform needs
- * more), each with its planner inputs, numbered from firstId. Returns [] for a
- * zero-length move. With `minDuration_s`, each segment's speed is capped so that
- * it lasts at least that long (floorCruise2).
+ * more), each with its planner inputs, numbered from firstId. A dwell is one
+ * segment at the tail's position; so is a zero-length move that sets events (a
+ * dwell of 0 s). Returns [] for a zero-length move that sets none. With
+ * `minDuration_s`, each segment's speed is capped so that it lasts at least that
+ * long (floorCruise2); a dwell lasts its own time.
  */
 export function segmentsForMove(
   config: ResolvedConfig,
@@ -173,8 +239,9 @@ export function segmentsForMove(
   minDuration_s = 0,
 ): Segment[] {
   const p0 = tail.position;
+  if (move.dwell_s !== null) return [dwellSegment(config, move, p0, move.dwell_s, firstId, moveId)];
   const total = distance(p0, move.end);
-  if (total < ZERO_LENGTH_MM) return [];
+  if (total < ZERO_LENGTH_MM) return move.events.length > 0 ? [dwellSegment(config, move, p0, 0, firstId, moveId)] : [];
   const unit = new Array<number>(p0.length);
   for (let i = 0; i < p0.length; i++) unit[i] = (move.end[i] - p0[i]) / total;
   const limits = config.limits;

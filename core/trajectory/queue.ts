@@ -19,7 +19,7 @@ import type { ResolvedConfig } from '../config/types.ts';
 import { LookaheadPlanner } from '../plan/lookahead.ts';
 import { shouldDropSpent } from '../plan/spentPrefix.ts';
 import { buildEventTracks, type EventTrack } from './events.ts';
-import { segmentsForMove, validateMove, ZERO_LENGTH_MM, type Move, type PathTail, type ValidatedMove } from './moves.ts';
+import { segmentsForMove, tailAfter, validateMove, ZERO_LENGTH_MM, type Move, type PathTail, type ValidatedMove } from './moves.ts';
 import { Segment, type SegmentState } from './segment.ts';
 
 export type QueueEventType = 'added' | 'planned' | 'replanned' | 'transmitted' | 'historical' | 'removed';
@@ -35,7 +35,7 @@ export interface MoveReceipt {
   moveId: number;
   /** The segments the move became: one, or several when a nonlinear transform subdivided it. */
   segmentIds: number[];
-  /** True for a zero-length move, which adds nothing. */
+  /** True for a zero-length move that sets no event, which adds nothing. (One that sets events is a 0-s dwell.) */
   skipped: boolean;
 }
 
@@ -49,7 +49,7 @@ const LOCKED_MESSAGE = 'has already been transmitted; transmitted segments are l
 export class TrajectoryQueue {
   readonly config: ResolvedConfig;
   readonly capacity: number;
-  /** Zero-length moves skipped so far. */
+  /** Zero-length moves (setting no event) skipped so far. */
   skippedZeroLength = 0;
   /** Floor on every new segment's duration, s (the links' limit: net/linkFeedLimit.ts); 0 for none. */
   private minSegmentDuration_s = 0;
@@ -231,9 +231,7 @@ export class TrajectoryQueue {
       this.planner.append(seg);
     }
     const last = segments[segments.length - 1];
-    this.tail.position = last.end;
-    this.tail.unit = last.unit;
-    this.tail.cruise2 = last.cruise2;
+    tailAfter(last, this.tail);
     if (added) for (const seg of segments) added.push(seg);
     else this.emit('added', segments);
     return { moveId, segmentIds: segments.length === 1 ? [segments[0].id] : segments.map((s) => s.id), skipped: false };
@@ -298,6 +296,9 @@ export class TrajectoryQueue {
     const first = this.live.length - this.untransmitted;
     for (let i = first; i < this.live.length; i++) {
       const seg = this.live[i];
+      // The plan comes to rest before every dwell, and braking at the same limits from
+      // a speed no higher does too: hold before the dwell, its events not yet set.
+      if (seg.isDwell) return this.restBefore(i);
       const reach = 2 * seg.accel * seg.length;
       if (v2 >= reach && i + 1 < this.live.length) {
         v2 -= reach;
@@ -409,9 +410,8 @@ export class TrajectoryQueue {
     this.newlyPlanned = [];
     this.truncateTo(index, planIndex);
     const before = this.live[index - 1] as Segment | undefined;
-    this.tail.position = before ? before.end : removed[0].start;
-    this.tail.unit = before ? before.unit : null;
-    this.tail.cruise2 = before ? before.cruise2 : 0;
+    if (before) tailAfter(before, this.tail);
+    else Object.assign(this.tail, { position: removed[0].start, unit: null, cruise2: 0 });
 
     const added: Segment[] = [];
     const receipt = replacement ? this.enqueue(replacement, this.nextMoveId++, added) : undefined;

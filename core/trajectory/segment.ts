@@ -7,12 +7,15 @@
  * actuatorStart[j] + actuatorRate[j]·s (exact for linear transforms; within the
  * stated tolerance for nonlinear ones, whose lines are subdivided first).
  *
+ * A dwell (moves.ts) is a segment of length 0 with a zero direction: it holds
+ * its start, and its timing is one phase at speed 0 lasting `dwell_s`.
+ *
  * Timing is s(t) as polynomial phases (plan/phases.ts), set once the planner's
  * plan for the segment is final. Its absolute start time, in author µs, is set when
  * the segment is transmitted.
  */
 import type { PlanBlock } from '../plan/lookahead.ts';
-import { timingDuration, trapezoidTiming, type Timing } from '../plan/phases.ts';
+import { dwellTiming, timingDuration, trapezoidTiming, type Timing } from '../plan/phases.ts';
 import type { EventTrack, ResolvedEventSpec } from './events.ts';
 import type { ValidatedMove } from './moves.ts';
 
@@ -36,6 +39,8 @@ export class Segment implements PlanBlock {
   readonly length: number;
   /** mm along the move at which this segment starts (0 unless the move was subdivided). */
   readonly moveOffset: number;
+  /** s that a dwell holds its position; null for a line. */
+  readonly dwell_s: number | null;
   /** Each actuator axis at the segment's start, and its rate d(actuator)/ds. */
   actuatorStart: number[] = NO_ACTUATORS;
   actuatorRate: number[] = NO_ACTUATORS;
@@ -73,6 +78,7 @@ export class Segment implements PlanBlock {
     length: number,
     moveOffset: number,
     source: ValidatedMove,
+    dwell_s: number | null = null,
   ) {
     this.id = id;
     this.moveId = moveId;
@@ -83,11 +89,17 @@ export class Segment implements PlanBlock {
     this.length = length;
     this.moveOffset = moveOffset;
     this.events = source.events;
+    this.dwell_s = dwell_s;
+  }
+
+  /** Whether this segment is a dwell (length 0, at rest for dwell_s). */
+  get isDwell(): boolean {
+    return this.dwell_s !== null;
   }
 
   /** Builds the timing from the planner's entry and exit speeds (dropping event tracks built for older timing). */
   time(): Timing {
-    const timing = trapezoidTiming(this.length, this.entry2, this.exit2, this.cruise2, this.accel);
+    const timing = this.dwell_s !== null ? dwellTiming(this.dwell_s) : trapezoidTiming(this.length, this.entry2, this.exit2, this.cruise2, this.accel);
     this.timing = timing;
     this.duration_s = timingDuration(timing);
     this.eventTracks = null;
