@@ -10,6 +10,7 @@
  * once the last one arrived, so snapshots never queue up and never outpace frames.
  */
 import type { MaxlConfig, TransformConfig } from '../../core/index.ts';
+import type { PlotterCommand, PlotterEvent } from '../tools/plotter/protocol.ts';
 
 // ---------------------------------------------------------------------------
 // Shared shapes
@@ -203,9 +204,9 @@ export interface Snapshot {
 // The tools (app/tools/<name>/protocol.ts): each command and event carries `tool`.
 
 /** Every tool's commands. */
-export type ToolCommand = never;
+export type ToolCommand = PlotterCommand;
 /** Every tool's events. */
-export type ToolEvent = never;
+export type ToolEvent = PlotterEvent;
 
 // ---------------------------------------------------------------------------
 // main → worker

@@ -4,9 +4,10 @@
  */
 import type { ToolContext, WorkbenchTool } from './toolContext.ts';
 import type { ToolCommand } from './protocol.ts';
+import { PlotterTool } from '../tools/plotter/plotterTool.ts';
 
 export function createTools(ctx: ToolContext): Map<string, WorkbenchTool<ToolCommand>> {
   const tools = new Map<string, WorkbenchTool<ToolCommand>>();
-  void ctx;
+  tools.set('plotter', new PlotterTool(ctx));
   return tools;
 }

@@ -43,10 +43,8 @@ function inside(p: Point, min: readonly number[], max: readonly number[]): boole
   return p[0] >= min[0] && p[0] <= max[0] && p[1] >= min[1] && p[1] <= max[1];
 }
 
-function lerp(a: Point, b: Point, t: number): Point {
-  if (t === 0) return a;
-  if (t === 1) return b;
-  return [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t];
+function clamp(v: number, lo: number, hi: number): number {
+  return v < lo ? lo : v > hi ? hi : v;
 }
 
 export class StrokeClipper {
@@ -59,9 +57,16 @@ export class StrokeClipper {
   firstRefused: Point | null = null;
 
   constructor(
-    private readonly min: readonly number[],
-    private readonly max: readonly number[],
+    readonly min: readonly number[],
+    readonly max: readonly number[],
   ) {}
+
+  /** The point at t along a→b, clamped into the box: a boundary point computed in floating point may land a hair outside. */
+  private at(a: Point, b: Point, t: number): Point {
+    if (t === 0) return a;
+    if (t === 1) return b;
+    return [clamp(a[0] + (b[0] - a[0]) * t, this.min[0], this.max[0]), clamp(a[1] + (b[1] - a[1]) * t, this.min[1], this.max[1])];
+  }
 
   /** The next point of the stroke; returns what to do. */
   push(q: Point): ClipStep[] {
@@ -88,10 +93,10 @@ export class StrokeClipper {
     if (!this.open) {
       // Only grazing the box (a corner, or a point on its edge on the way out): nothing to draw.
       if (t1 === t0 && t1 < 1) return steps;
-      steps.push({ type: 'start', p: lerp(p, q, t0) });
+      steps.push({ type: 'start', p: this.at(p, q, t0) });
       this.open = true;
     }
-    if (t1 > t0) steps.push({ type: 'to', p: lerp(p, q, t1) });
+    if (t1 > t0) steps.push({ type: 'to', p: this.at(p, q, t1) });
     if (t1 < 1) {
       this.firstRefused ??= q;
       steps.push({ type: 'end' });
