@@ -92,6 +92,35 @@ export function buildVectors(): { protocol: number; vectors: Vector[] } {
       ],
     }),
     valid('timing, contiguous cruise', 7, { type: 'TIMING', firstId: 3, count: 1, flags: 0, stopDecel: 250.25, segments: [{ shape: 0b10, durations: [2097152], alpha: 0 }] }),
+    // A dwell: a segment of length 0 that holds its start (p1 = the p1 before it), timed as one
+    // phase at alpha 0 lasting the dwell; an event-only move is an instant, a dwell of 0 µs.
+    valid(
+      'geometry, a dwell between two segments (length 0, p1 = where it starts)',
+      13,
+      {
+        type: 'GEOMETRY',
+        firstId: 20,
+        count: 3,
+        flags: 0,
+        segments: [
+          { length: 2.5, p1: [163840] },
+          { length: 0, p1: [163840] },
+          { length: 2.5, p1: [327680] },
+        ],
+      },
+      ctx(1),
+    ),
+    valid('timing, a 120 ms dwell then an instant (0 µs)', 14, {
+      type: 'TIMING',
+      firstId: 21,
+      count: 2,
+      flags: 0,
+      stopDecel: 1500,
+      segments: [
+        { shape: 0b10, durations: [120000], alpha: 0 },
+        { shape: 0b10, durations: [0], alpha: 0 },
+      ],
+    }),
     valid('events with a continuation index', 8, {
       type: 'EVENTS',
       segmentId: 3,

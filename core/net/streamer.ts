@@ -330,15 +330,19 @@ export class Streamer {
     return n;
   }
 
-  /** Braking distance (mm) from speed² v2 at the provisional segments' weakest deceleration. */
+  /**
+   * The deceleration (mm/s²) devices brake at along the provisional segments: their
+   * weakest limit. A dwell has no direction, so no limit of its own: it is skipped
+   * (braking passes through its point, docs/protocol.md §6).
+   */
   private stopDecel(): number {
     let a = Infinity;
-    for (let i = this.timed; i < this.sent.length; i++) a = Math.min(a, this.sent[i].accel);
+    for (let i = this.timed; i < this.sent.length; i++) if (!this.sent[i].isDwell) a = Math.min(a, this.sent[i].accel);
     for (let i = 0; a === Infinity && i < 4; i++) {
       const s = this.queue.untransmittedAt(i);
-      if (s) a = Math.min(a, s.accel);
+      if (s && !s.isDwell) a = Math.min(a, s.accel);
     }
-    if (a === Infinity && this.timed > 0) a = this.sent[this.timed - 1].accel;
+    for (let i = this.timed - 1; a === Infinity && i >= 0; i--) if (!this.sent[i].isDwell) a = this.sent[i].accel;
     return a === Infinity ? 1 : a;
   }
 
@@ -436,7 +440,8 @@ export class Streamer {
    */
   private queueEvents(d: DeviceState, seg: Segment, deviceLength: number): void {
     if (d.binding.eventSlots.size === 0) return;
-    const scale = deviceLength / seg.duration_s; // device µs per author s within this segment
+    // device µs per author s within this segment; an instant (a 0-s dwell) has all its events at offset 0
+    const scale = seg.duration_s > 0 ? deviceLength / seg.duration_s : 0;
     for (const track of this.queue.eventTracksOf(seg)) {
       const slot = d.binding.eventSlots.get(track.channel);
       if (slot === undefined) continue;

@@ -45,7 +45,8 @@ TEST(Profile, RejectsUnrunnableTiming) {
   s.shape = phase::CRUISE;
   s.phaseCount = 1;
   s.durations[0] = 0;
-  EXPECT_FALSE(solveProfile(s, peak, end));  // T = 0
+  s.length = 1.0f;
+  EXPECT_FALSE(solveProfile(s, peak, end));  // T = 0 for a segment that moves
   s.durations[0] = 0x80000000u;
   EXPECT_FALSE(solveProfile(s, peak, end));  // not wrap-safe
   s.durations[0] = 1000;
@@ -81,4 +82,25 @@ TEST(Profile, SlotCoefficientsScale) {
   EXPECT_EQ(b0, 85899);
   EXPECT_EQ(cmag, 0);
   EXPECT_FALSE(slotCoefficients(2e9f, 1e6f, 1e6f, 0.0f, b0, cmag));  // far over 250 m/s
+}
+
+// A dwell (length 0): σ still runs 0..1 over T, so ν0 = 1/T; an instant
+// (T = 0) is allowed for a dwell only, and solves to ν0 = 0.
+TEST(Profile, DwellsAndInstants) {
+  float peak, end;
+  Segment s{};
+  s.shape = phase::CRUISE;
+  s.phaseCount = 1;
+  s.durations[0] = 120000;
+  s.length = 0.0f;
+  ASSERT_TRUE(solveProfile(s, peak, end));
+  EXPECT_NEAR(s.nu0, 1.0f / 0.12f, 1e-3);
+  EXPECT_NEAR(end, s.nu0, 1e-6);
+  s.durations[0] = 0;
+  ASSERT_TRUE(solveProfile(s, peak, end));
+  EXPECT_EQ(s.nu0, 0.0f);
+  EXPECT_EQ(peak, 0.0f);
+  EXPECT_EQ(end, 0.0f);
+  s.alpha = NAN;  // still refused: a bad α is bad on any segment
+  EXPECT_FALSE(solveProfile(s, peak, end));
 }

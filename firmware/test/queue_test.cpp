@@ -59,13 +59,19 @@ TEST(Geometry, IdsAndP0) {
   EXPECT_EQ(a.reason, nack::MALFORMED);
   EXPECT_EQ(a.detail, 40002);
   EXPECT_EQ(h.exchange(h.author.geometry(40002, nullptr, {{1.0f, {0}}}, 1)).reason, 0);
-  // Lengths must be positive and finite; the count at least one.
-  EXPECT_EQ(h.exchange(h.author.geometry(40003, nullptr, {{0.0f, {0}}}, 1)).reason, nack::MALFORMED);
+  // Lengths must be >= 0 and finite; the count at least one. A length of 0 is
+  // a dwell: it must hold where it starts (segment 40002 ends at 0).
+  EXPECT_EQ(h.exchange(h.author.geometry(40003, nullptr, {{0.0f, {1}}}, 1)).reason, nack::MALFORMED);
+  EXPECT_EQ(h.exchange(h.author.geometry(40003, nullptr, {{1.0f, {65536}}, {0.0f, {0}}}, 1)).reason, nack::MALFORMED);
   EXPECT_EQ(h.exchange(h.author.geometry(40003, nullptr, {{-1.0f, {0}}}, 1)).reason, nack::MALFORMED);
+  EXPECT_EQ(h.device->motion().queue().count(), 3);  // nothing of those was added
   EXPECT_EQ(h.exchange(h.author.geometry(40003, nullptr, {{INFINITY, {0}}}, 1)).reason, nack::MALFORMED);
   EXPECT_EQ(h.exchange(h.author.geometry(40003, nullptr, {}, 1)).reason, nack::MALFORMED);
   // The payload's size follows P (one slot subscribed): two values per segment is malformed.
   EXPECT_EQ(h.exchange(h.author.geometry(40003, nullptr, {{1.0f, {0, 0}}}, 2)).reason, nack::MALFORMED);
+  // Dwells that hold: after 40002 (ends at 0), and after a segment of the same frame.
+  EXPECT_EQ(h.exchange(h.author.geometry(40003, nullptr, {{0.0f, {0}}, {2.0f, {131072}}, {0.0f, {131072}}}, 1)).reason, 0);
+  EXPECT_EQ(h.device->motion().queue().count(), 6);
 }
 
 TEST(Geometry, QueueFullAddsNothingAndSetsTheFlag) {

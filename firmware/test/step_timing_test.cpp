@@ -410,6 +410,34 @@ TEST(TimedStepper, FortyKilohertzEveryStepOnTime) {
   EXPECT_EQ(rig.stepper.generator().channel().pending(), 0);
 }
 
+// A dwell between two 40 kHz moves (as a plotter's pen drop): to rest, 30 ms
+// holding (a segment of length 0, one phase at alpha 0), then on from rest.
+// Every step on time on both sides, and none while it holds.
+TEST(TimedStepper, DwellHoldsBetweenMovesEveryStepOnTime) {
+  Rig rig(true);
+  msg::TimingSegment hold{};
+  hold.shape = phase::CRUISE;
+  hold.phaseCount = 1;
+  hold.durations[0] = 30000;
+  std::vector<Seg> segs = {{12.5, trapezoid(12.5, 0, 500, 500, 10000)}, {12.5, trapezoid(12.5, 500, 500, 0, 10000)}, {0.0, hold},
+                           {12.5, trapezoid(12.5, 0, 500, 500, 10000)}, {12.5, trapezoid(12.5, 500, 500, 0, 10000)}};
+  uint32_t start = rig.now + 20000;
+  sendMove(rig, segs, start);
+  const int32_t total = stepsOf(segs);
+  ASSERT_EQ(total, 4000);
+  host::clearPinLog();
+  rig.runUntil((uint32_t)rig.path.end() + 5000, cadence(50));
+  std::vector<Edge> edges = stepEdges(2, 5);
+  Verdict v = judge(rig.path, edges, S80, 0, total, SLACK);
+  EXPECT_EQ(v.got, total);
+  EXPECT_EQ(v.early, 0);
+  EXPECT_EQ(v.late, 0);
+  EXPECT_EQ(v.tooLaggy, 0) << "max lag " << v.maxLagUs << " µs";
+  const double holdStart = start + durationOf(segs[0].timing) + durationOf(segs[1].timing);
+  for (const Edge& e : edges) EXPECT_FALSE(e.us > holdStart + 1 && e.us < holdStart + 30000) << e.us;
+  EXPECT_EQ(rig.stepper.steps(), total);
+}
+
 // loop() stalls 2 ms every 5 ms (a STATUS, a TIMING's float maths, a slow
 // callback): the timer keeps the steps on time. The same stalls make the
 // polled stepper late, so the test can tell.

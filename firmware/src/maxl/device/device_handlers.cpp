@@ -79,10 +79,6 @@ MAXL_Device::Answer MAXL_Device::onGeometry(const uint8_t* p, uint8_t n) {
   const uint8_t P = motion_.activeSlots();
   msg::GeometryView g;
   if (!g.parse(p, n, P) || g.count == 0) return nack(nack::MALFORMED, type::GEOMETRY);
-  for (uint8_t k = 0; k < g.count; k++) {
-    float length = g.length(k);
-    if (!(length > 0.0f) || !isFiniteFloat(length)) return nack(nack::MALFORMED, type::GEOMETRY);
-  }
   SegmentQueue& q = motion_.queue();
   bool empty = q.count() == 0;
   // On an empty queue a p0 (re)starts the queue at any id; otherwise ids
@@ -91,6 +87,18 @@ MAXL_Device::Answer MAXL_Device::onGeometry(const uint8_t* p, uint8_t n) {
   if (!restart) {
     if (empty && motion_.knownSlots() < P) return nack(nack::MALFORMED, type::GEOMETRY);  // where from?
     if (g.firstId != q.nextId()) return nack(nack::MALFORMED, q.nextId());
+  }
+  // Lengths are >= 0 and finite. A length of 0 is a dwell, which holds its
+  // start: its p1 must be where it starts (the p1 before it, or p0).
+  for (uint8_t k = 0; k < g.count; k++) {
+    float length = g.length(k);
+    if (!(length >= 0.0f) || !isFiniteFloat(length)) return nack(nack::MALFORMED, type::GEOMETRY);
+    if (length == 0.0f) {
+      for (uint8_t i = 0; i < P; i++) {
+        int32_t from = k > 0 ? g.p1((uint8_t)(k - 1), i) : restart ? g.p0(i) : motion_.startOf(q.count(), i);
+        if (g.p1(k, i) != from) return nack(nack::MALFORMED, type::GEOMETRY);
+      }
+    }
   }
   if (q.free() < g.count) {
     flags_ |= status_flag::QUEUE_FULL;

@@ -250,8 +250,12 @@ void Motion::beginBrake(uint32_t t, float speed, float sigma0, const int32_t* fr
     return;
   }
   BrakePiece piece = planBrake(speed, decel, (1.0f - sigma0) * length);
+  // A dwell (length 0) is a point of the path: the brake piece along it covers
+  // nothing and lasts 0 µs, and braking goes on along the next segment at the
+  // same speed. Its slots do not move (Δ = 0), so 1/L is never needed there.
+  float perLength = length > 0.0f ? 1.0f / length : 0.0f;
   for (uint8_t i = 0; i < activeSlots_; i++) {
-    float perMm = deltaOf(base_[i], s.p1[i]) / length;
+    float perMm = deltaOf(base_[i], s.p1[i]) * perLength;
     float b = perMm * speed * B_SCALE;
     float c = -perMm * decel * 0.5f * C_SCALE;
     if (!(fabsf(b) < FIXED_LIMIT) || !(fabsf(c) < FIXED_LIMIT)) {
@@ -264,15 +268,15 @@ void Motion::beginBrake(uint32_t t, float speed, float sigma0, const int32_t* fr
     track_[i].C = roundToInt(c);
   }
   brakeStops_ = piece.stops;
-  brakeEndSigma_ = piece.stops ? sigma0 + piece.distance / length : 1.0f;
+  brakeEndSigma_ = piece.stops ? sigma0 + piece.distance * perLength : 1.0f;
   if (brakeEndSigma_ > 1.0f) brakeEndSigma_ = 1.0f;
   brakeExitSpeed_ = piece.exitSpeed;
   chunkStart_ = phaseStart_ = t;
   phaseEnd_ = t + piece.duration;
   length_ = length;
   phaseSigma_ = sigma0;
-  phaseNu_ = speed / length;
-  phaseAcc_ = -decel / length;
+  phaseNu_ = speed * perLength;
+  phaseAcc_ = -decel * perLength;
   floatValid_ = true;
   mode_ = BRAKING;
 }

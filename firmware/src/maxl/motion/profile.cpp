@@ -12,9 +12,16 @@ bool solveProfile(Segment& seg, float& nuPeak, float& nuEnd) {
     totalUs += seg.durations[k];
     if (totalUs >= 0x80000000UL) return false;
   }
-  if (totalUs == 0) return false;
   float alpha = seg.alpha;
   if (!isFiniteFloat(alpha) || alpha < 0.0f) return false;
+  if (totalUs == 0) {
+    // An instant: only a dwell (length 0) may last no time. Nothing moves, so
+    // no speed to solve; its events happen at its start.
+    if (seg.length != 0.0f) return false;
+    seg.nu0 = 0.0f;
+    nuPeak = nuEnd = 0.0f;
+    return true;
+  }
 
   // Q = Σk ck·dk·(dk/2 + rest_k), rest_k = time after phase k (seconds).
   float q = 0.0f;

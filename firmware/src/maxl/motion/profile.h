@@ -27,8 +27,13 @@ inline bool isFiniteFloat(float x) { return x - x == 0.0f; }
 // because phase k adds ck·α·dk²/2 inside itself and raises the speed by
 // ck·α·dk for every phase after it. σ(T) = 1 gives ν0 = (1 − α·Q)/T.
 //
+// A dwell (length 0) runs σ from 0 to 1 like any segment, but every slot's
+// Δ is 0, so nothing moves and L·σ' = 0. A dwell of T = 0 is an instant:
+// ν0 = 0 and it ends as it starts.
+//
 // Fills seg.nu0 and returns false when the timing cannot be run:
-//   no phase, T = 0, T ≥ 2^31 µs (not wrap-safe), α negative or not finite,
+//   no phase, T = 0 for a segment of length > 0, T ≥ 2^31 µs (not
+//   wrap-safe), α negative or not finite,
 //   or a speed below zero by more than rounding explains (durations are
 //   whole µs: allow α·10 µs plus 10^-5 of the peak, in 1/s).
 // `nuPeak` gets the largest |σ'| at any phase boundary, `nuEnd` σ'(T).
