@@ -26,8 +26,10 @@ afterEach(async () => {
   bench = null;
 });
 
-async function setup() {
-  const b = await startMachine(blotPlotter(), { sim: { toolTracePeriod_us: 1000 } });
+async function setup(queueCapacity?: number) {
+  const preset = blotPlotter();
+  if (queueCapacity) preset.config.queueCapacity = queueCapacity;
+  const b = await startMachine(preset, { sim: { toolTracePeriod_us: 1000 } });
   bench = b;
   const log: Array<{ level: string; code: string; message: string }> = [];
   let claimed = false;
@@ -90,9 +92,8 @@ function ink(b: Bench): number[][] {
 }
 
 describe('live drawing on the simulated Blot', () => {
-  it('the machine follows a smooth stroke while it is drawn, never rests inside it, and its ink matches the stroke', async () => {
+  it('the machine follows a smooth stroke while it is drawn, never rests inside it, and its ink matches the stroke', { timeout: 60_000 }, async () => {
     const { b, drawer, pen, log } = await setup();
-    // Wait while the pointer is down at the first point, as a hand does for a pen to land.
     const curve = arc(60, 60, 20, 0);
     const length = 2 * Math.PI * 20 * 0.9;
     const drawn = await drawStroke(b, drawer, 1, pen, length, 50, curve);
@@ -132,7 +133,8 @@ describe('live drawing on the simulated Blot', () => {
   });
 
   it('a hand faster than the limits: the machine falls behind, every point waits in order, none is dropped', async () => {
-    const { b, drawer, pen } = await setup();
+    // A small queue (32 segments), so the hand runs ahead of what it holds.
+    const { b, drawer, pen } = await setup(32);
     // 150 mm/s on a gentle zigzag of straight 30 mm legs, above the machine's 120 mm/s.
     const legs: Array<[number, number]> = [[10, 10], [40, 20], [70, 10], [100, 20], [70, 40], [40, 30], [10, 40], [40, 60], [70, 50], [100, 60], [110, 100], [20, 110]];
     const cumulative = [0];
@@ -144,7 +146,6 @@ describe('live drawing on the simulated Blot', () => {
       const f = (s - cumulative[i - 1]) / (cumulative[i] - cumulative[i - 1]);
       return [legs[i - 1][0] + f * (legs[i][0] - legs[i - 1][0]), legs[i - 1][1] + f * (legs[i][1] - legs[i - 1][1])];
     };
-    // A small queue, so the hand runs ahead of what it holds.
     let mostWaiting = 0;
     const drawn = await drawStroke(b, drawer, 1, pen, length, 150, (s) => {
       mostWaiting = Math.max(mostWaiting, drawer.status().waitingMoves);
@@ -153,34 +154,35 @@ describe('live drawing on the simulated Blot', () => {
     const behindAtLift = drawer.status().behind_mm;
     await runUntilSettled(b, drawer);
     expect(behindAtLift).toBeGreaterThan(10);
+    expect(mostWaiting).toBeGreaterThan(20);
     // Every pointer point was drawn: each lies on the ink.
     const inked = ink(b);
     const missed = [];
     for (let i = 0; i < drawn.xy.length; i += 2) if (pointDrawingDistance(drawn.xy[i], drawn.xy[i + 1], inked) > 0.3) missed.push(i / 2);
     expect(missed).toEqual([]);
     expect(hausdorff([drawn.xy], inked)).toBeLessThanOrEqual(0.3);
-  });
+  }, 60_000);
 
   it('a stroke leaving the soft limits: the part outside is refused with a note, the rest is drawn, no ink outside', async () => {
     const { b, drawer, pen, log } = await setup();
     // From (100, 50) right to x = 140 (the bed ends at 125), down, and back to (100, 60).
-    const legs: Array<[number, number]> = [[100, 50], [140, 50], [140, 60], [100, 60]];
     const path = (s: number): [number, number] => {
       if (s <= 40) return [100 + s, 50];
       if (s <= 50) return [140, 50 + (s - 40)];
       return [140 - (s - 50), 60];
     };
-    void legs;
     await drawStroke(b, drawer, 7, pen, 90, 40, path);
     await runUntilSettled(b, drawer);
     const note = log.find((l) => l.code === 'DRAW_OUTSIDE');
-    expect(note?.message).toMatch(/Stroke 7 left the soft limits .* 40\.0 mm outside were not drawn, the rest was/);
+    expect(note?.message).toMatch(/Stroke 7 left the soft limits \(from 125\.\d, 50\.0 mm; the bed is 0–125 × 0–125 mm\): \d+\.\d mm outside were not drawn, the rest was/);
+    // 15 + 10 + 15 mm outside, less what the pointer's samples cut off the corners.
+    expect(Number(/: ([\d.]+) mm outside/.exec(note!.message)![1])).toBeCloseTo(40, 0);
     const inked = ink(b);
     expect(inked).toHaveLength(2);
     const inside = [[100, 50, 125, 50], [125, 60, 100, 60]];
     expect(hausdorff(inside, inked)).toBeLessThanOrEqual(0.3);
     for (const s of inked) for (let i = 0; i < s.length; i += 2) expect(s[i]).toBeLessThanOrEqual(125.3);
-  });
+  }, 60_000);
 
   it('STOP drops the strokes not yet drawn, and says so', async () => {
     const { b, drawer, pen, log } = await setup();
