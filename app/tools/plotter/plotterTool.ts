@@ -36,6 +36,8 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand> {
   /** Pen strokes of the plant shown and saved from here on (draw-clear moves it), and how many points of each were posted. */
   private inkFrom = 0;
   private inkPosted: number[] = [];
+  /** The simulated machine the ink comes from: another one starts its ink afresh. */
+  private inkSim: unknown = null;
   /** Dev/test hook: each stroke's points on the author's clock (docs/test-hooks.md). */
   private readonly received = new Map<number, number[]>();
 
@@ -129,8 +131,6 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand> {
     if (key === this.settingsFor) return;
     this.settingsFor = key;
     this.pen = penDefaults(this.machine(), this.ctx.presetId);
-    this.inkFrom = 0;
-    this.inkPosted = [];
     this.postSettings();
   }
 
@@ -199,6 +199,13 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand> {
   }
 
   private postInk(): void {
+    if (this.ctx.sim !== this.inkSim) {
+      this.inkSim = this.ctx.sim;
+      this.inkFrom = 0;
+      this.inkPosted = [];
+      this.planned.clear();
+      this.post({ tool: 'plotter', type: 'draw-cleared' });
+    }
     const pen = this.ctx.sim?.plant.pen;
     if (!pen) return;
     const pieces: Array<{ index: number; from: number; xy: Float32Array }> = [];

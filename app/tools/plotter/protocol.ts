@@ -47,6 +47,8 @@ export interface DrawStatus {
   behind_s: number;
   /** Whether the plotter holds the machine (strokes are being drawn). */
   active: boolean;
+  /** The latest stroke id the drawer took or refused: a stroke up to it that `strokes` does not list is complete. */
+  lastId: number;
 }
 
 /** Ground truth the dev/test hook returns (never built in production). */

@@ -96,6 +96,7 @@ export class LiveDrawer {
   private holding = false;
   private penRaised = false;
   private maxl: Maxl | null = null;
+  private lastId = 0;
   private unsubscribe: (() => void) | null = null;
   /** Counts for the dev/test hook. */
   fedMoves = 0;
@@ -123,6 +124,7 @@ export class LiveDrawer {
 
   /** The pointer went down at p: a new stroke, if the machine can be had. False if refused. */
   start(id: number, p: Point, pen: PenSettings | null, tolerance_mm: number): boolean {
+    this.lastId = Math.max(this.lastId, id);
     const refuse = (reason: string, level: LogLevel = 'warning') => {
       this.refusedPoints++;
       this.host.log(level, 'DRAW_REFUSED', `Stroke not drawn: ${reason}.`);
@@ -204,7 +206,7 @@ export class LiveDrawer {
     const strokes: StrokeProgress[] = this.strokes.map((s) => ({ id: s.id, received: s.received, done: s.done, ended: s.ended }));
     const behind_mm = Math.max(0, this.path_mm - this.done_mm);
     const speed = this.current?.pen.drawSpeed ?? this.strokes.at(-1)?.pen.drawSpeed ?? NaN;
-    return { strokes, waitingMoves: this.waiting.length - this.head, behind_mm, behind_s: behind_mm / speed || 0, active: this.holding };
+    return { strokes, waitingMoves: this.waiting.length - this.head, behind_mm, behind_s: behind_mm / speed || 0, active: this.holding, lastId: this.lastId };
   }
 
   /** Releases the machine once everything drawn has run (call now and then: the tool's frame). */
