@@ -38,8 +38,8 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand> {
   private inkPosted: number[] = [];
   /** The simulated machine the ink comes from: another one starts its ink afresh. */
   private inkSim: unknown = null;
-  /** Dev/test hook: each stroke's points on the author's clock (docs/test-hooks.md). */
-  private readonly received = new Map<number, number[]>();
+  /** Dev/test hook: each stroke's points on the author's clock, when each arrived, and how far the machine fell behind (docs/test-hooks.md). */
+  private readonly received = new Map<number, { points: number[]; arrived: number[]; behindMax_mm: number; waitingMax: number }>();
 
   constructor(private readonly ctx: ToolContext) {
     this.live = new LiveDrawer({
@@ -143,14 +143,23 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand> {
   private handleDraw(cmd: PlotterCommand): void {
     switch (cmd.type) {
       case 'draw-start':
-        this.received.set(cmd.id, import.meta.env.DEV ? [cmd.x, cmd.y, this.authorTime(cmd.t)] : []);
+        if (import.meta.env.DEV) this.received.set(cmd.id, { points: [cmd.x, cmd.y, this.authorTime(cmd.t)], arrived: [this.ctx.scheduler.now()], behindMax_mm: 0, waitingMax: 0 });
         if (!this.live.start(cmd.id, [cmd.x, cmd.y], this.settings(), this.tolerance_mm)) this.received.delete(cmd.id);
         this.statusChanged = true;
         return;
       case 'draw-points': {
-        const record = this.received.get(cmd.id);
-        if (import.meta.env.DEV && record) for (let i = 0; i + 2 < cmd.points.length; i += 3) record.push(cmd.points[i], cmd.points[i + 1], this.authorTime(cmd.points[i + 2]));
         this.live.points(cmd.id, cmd.points, 3);
+        const record = import.meta.env.DEV ? this.received.get(cmd.id) : undefined;
+        if (record) {
+          const now = this.ctx.scheduler.now();
+          for (let i = 0; i + 2 < cmd.points.length; i += 3) {
+            record.points.push(cmd.points[i], cmd.points[i + 1], this.authorTime(cmd.points[i + 2]));
+            record.arrived.push(now);
+          }
+          const status = this.live.status();
+          record.behindMax_mm = Math.max(record.behindMax_mm, status.behind_mm);
+          record.waitingMax = Math.max(record.waitingMax, status.waitingMoves);
+        }
         this.statusChanged = true;
         return;
       }
@@ -258,7 +267,7 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand> {
     const status = this.live.status();
     return {
       ink,
-      strokes: [...this.received].map(([id, points]) => ({ id, points })),
+      strokes: [...this.received].map(([id, r]) => ({ id, ...r })),
       now_us: this.ctx.scheduler.now(),
       lead_us: maxl?.lead_us ?? NaN,
       limits: { maxVelocity: scalarLimit(this.ctx.config.limits.maxVelocity), maxAcceleration: scalarLimit(this.ctx.config.limits.maxAcceleration) },

@@ -55,8 +55,13 @@ export interface DrawStatus {
 export interface DrawTruth {
   /** Pen-down ink of the simulated pen since the last clear: x, y, t_us (author µs) triples per stroke. */
   ink: number[][];
-  /** Each stroke's points as the worker received them: x, y and author µs. */
-  strokes: Array<{ id: number; points: number[] }>;
+  /**
+   * Each stroke's points as the worker received them: x, y and the pointer event's
+   * time, on the author's clock (µs); the author's clock when each arrived (µs);
+   * and the most the machine was behind it (mm) and the most moves that waited for
+   * room, as its points arrived.
+   */
+  strokes: Array<{ id: number; points: number[]; arrived: number[]; behindMax_mm: number; waitingMax: number }>;
   /** Author µs now, and the streamer's lead (µs). */
   now_us: number;
   lead_us: number;
