@@ -9,6 +9,7 @@ import { blotPlotter } from '../../../../core/sim/presets/blotPlotter.ts';
 import { hausdorff, pointDrawingDistance } from '../geometry/hausdorff.ts';
 import { penDefaults } from '../penDefaults.ts';
 import { LiveDrawer, type LiveHost } from './liveDrawer.ts';
+import { PlannedPen } from './plannedPen.ts';
 
 /** ms between pointer points (a 125 Hz mouse). */
 const SAMPLE_MS = 8;
@@ -47,7 +48,9 @@ async function setup(queueCapacity?: number) {
   const drawer = new LiveDrawer(host);
   drawer.attach(b.maxl);
   const pen = penDefaults({ motionAxes: ['x', 'y'], eventChannels: ['pen'], limits: { maxVelocity: 120 } }, 'blotPlotter')!;
-  return { b, drawer, pen, log, claimed: () => claimed, releases: () => releases };
+  const planned = new PlannedPen(() => pen);
+  planned.attach(b.maxl);
+  return { b, drawer, pen, planned, log, claimed: () => claimed, releases: () => releases };
 }
 
 /** Feeds `path(s)` (s in mm along it, 0…length) as a pointer moving at `speed` mm/s would, one point per SAMPLE_MS. */
@@ -93,7 +96,7 @@ function ink(b: Bench): number[][] {
 
 describe('live drawing on the simulated Blot', () => {
   it('the machine follows a smooth stroke while it is drawn, never rests inside it, and its ink matches the stroke', { timeout: 60_000 }, async () => {
-    const { b, drawer, pen, log } = await setup();
+    const { b, drawer, pen, planned, log, releases } = await setup();
     const curve = arc(60, 60, 20, 0);
     const length = 2 * Math.PI * 20 * 0.9;
     const drawn = await drawStroke(b, drawer, 1, pen, length, 50, curve);
@@ -130,6 +133,12 @@ describe('live drawing on the simulated Blot', () => {
     const error = hausdorff([drawn.xy], ink(b));
     expect(error).toBeLessThanOrEqual(0.3);
     expect(log.filter((l) => l.level !== 'info')).toEqual([]);
+    // The plan's pen-down path is one stroke: the thinned points (within the 0.2 mm tolerance of the pointer's).
+    expect(planned.strokes).toHaveLength(1);
+    expect(hausdorff([drawn.xy], planned.strokes)).toBeLessThanOrEqual(0.2);
+    // Everything drawn, the machine was given back.
+    expect(drawer.active).toBe(false);
+    expect(releases()).toBe(1);
   });
 
   it('a hand faster than the limits: the machine falls behind, every point waits in order, none is dropped', async () => {
