@@ -207,4 +207,31 @@ describe('live drawing on the simulated Blot', () => {
     drawer.points(3, [50, 50]);
     expect(drawer.status().waitingMoves).toBe(0);
   });
+
+  it('a stroke started while the machine is busy is refused with a note, and its points are ignored', async () => {
+    const { b, pen } = await setup();
+    const log: string[] = [];
+    const refused: number[] = [];
+    const drawer = new LiveDrawer({
+      maxl: b.maxl,
+      claim: () => {
+        log.push('MACHINE_BUSY: Cannot draw a stroke: a job runs');
+        return false;
+      },
+      release: () => {},
+      log: (_level, code, message) => log.push(`${code}: ${message}`),
+      strokeRefused: (id) => refused.push(id),
+    });
+    expect(drawer.start(4, [10, 10], pen, 0.2)).toBe(false);
+    drawer.points(4, [20, 20, 30, 30]);
+    drawer.end(4);
+    expect(refused).toEqual([4]);
+    expect(drawer.active).toBe(false);
+    expect(b.maxl.queue.untransmittedCount).toBe(0);
+    expect(drawer.status().lastId).toBe(4);
+    // Without a pen channel: refused with the reason.
+    const noPen = new LiveDrawer({ maxl: b.maxl, claim: () => true, release: () => {}, log: (_l, code, m) => log.push(`${code}: ${m}`), strokeRefused: () => {} });
+    expect(noPen.start(5, [10, 10], null, 0.2)).toBe(false);
+    expect(log.at(-1)).toMatch(/DRAW_REFUSED: Stroke not drawn: this machine has no event channel to drive a pen/);
+  });
 });
