@@ -205,10 +205,11 @@ window.__drawPointer = (a) => new Promise((resolve) => {
   };
   const draw = () => {
     const t0 = performance.now();
-    let moves = 0, worstGap = 0, last = t0;
+    let moves = 0, worstGap = 0, last = t0, next = t0 + a.sample;
     for (;;) {
-      const next = t0 + (moves + 1) * a.sample;
       while (performance.now() < next) {}
+      // A sample time missed (the page was descheduled) is skipped, not caught up in a burst.
+      next = Math.max(next + a.sample, performance.now() + a.sample / 2);
       const now = performance.now();
       worstGap = Math.max(worstGap, now - last);
       last = now;
