@@ -63,83 +63,29 @@
  * Targets: toolLagMs.p99 ≤ lagFloorMs + 5; stopsInsideStrokes = 0; inkErrorMm ≤ 0.3;
  * pointsDropped = 0.
  *
- * Options: --port N (vite, default 5185); DRAW_BENCH_DUMP=file writes the hook's truth there. Prints one JSON object as its last line.
+ *   virtualTime     the same figures for the same strokes drawn by an exact pointer on
+ *                   the simulated Blot in virtual time (bench/drawVirtual.ts): live
+ *                   drawing without the page, the worker and a busy machine
+ * The strokes and the pointer's motion: bench/drawStrokes.ts; the figures:
+ * bench/drawFigures.ts.
+ *
+ * Options: --port N (vite, default 5185); DRAW_BENCH_DUMP=file writes the hook's truth
+ * there. Prints one JSON object as its last line.
  */
 import { chromium, type Page } from '@playwright/test';
 import { spawn } from 'node:child_process';
 import { writeFileSync } from 'node:fs';
 import { loadavg } from 'node:os';
 import { setTimeout as delay } from 'node:timers/promises';
-import { hausdorff, pointDrawingDistance } from '../app/tools/plotter/geometry/hausdorff.ts';
-import { DistanceThinner } from '../app/tools/plotter/live/thinning.ts';
 import type { DrawTruth } from '../app/tools/plotter/protocol.ts';
+import { drawFigures, round } from './drawFigures.ts';
+import { byLength, POINTER_ACCEL, SAMPLE_MS, STROKES, type StrokeSpec } from './drawStrokes.ts';
+import { drawVirtual } from './drawVirtual.ts';
 
 const args = process.argv.slice(2);
 const PORT = args.includes('--port') ? Number(args[args.indexOf('--port') + 1]) : 5185;
 const URL_ = `http://localhost:${PORT}/`;
 const ARGS = ['--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update', '--disable-sync'];
-/** ms between pointer moves (a 125 Hz mouse or pen). */
-const SAMPLE_MS = 8;
-/** mm/s², the pointer's speeding up and slowing down at a stroke's ends. */
-const POINTER_ACCEL = 1000;
-
-// --- the strokes ---
-
-type Path = (u: number) => [number, number];
-interface StrokeSpec {
-  name: string;
-  kind: 'smooth' | 'zigzag' | 'fast';
-  speed: number;
-  path: Path;
-}
-
-const circle = (cx: number, cy: number, r: number): Path => (u) => [cx + r * Math.cos(2 * Math.PI * u), cy + r * Math.sin(2 * Math.PI * u)];
-const sine: Path = (u) => [15 + 90 * u, 64 + 6 * Math.sin((2 * Math.PI * 90 * u) / 45)];
-const spiral: Path = (u) => {
-  const a = 3 * Math.PI * u;
-  const r = 8 + 12 * u;
-  return [90 + r * Math.cos(a), 30 + r * Math.sin(a)];
-};
-const zigzagCorners: Array<[number, number]> = [[15, 95], [25, 85], [35, 95], [45, 85], [55, 95], [65, 85]];
-const zigzag: Path = (u) => {
-  const f = u * (zigzagCorners.length - 1);
-  const i = Math.min(zigzagCorners.length - 2, Math.floor(f));
-  const t = f - i;
-  const [a, b] = [zigzagCorners[i], zigzagCorners[i + 1]];
-  return [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
-};
-
-const STROKES: StrokeSpec[] = [
-  { name: 'circle r20', kind: 'smooth', speed: 50, path: circle(30, 30, 20) },
-  { name: 'sine a6 λ45', kind: 'smooth', speed: 50, path: sine },
-  { name: 'spiral r8–20', kind: 'smooth', speed: 50, path: spiral },
-  { name: 'zigzag', kind: 'zigzag', speed: 50, path: zigzag },
-  { name: 'fast circle r18', kind: 'fast', speed: 150, path: circle(100, 100, 18) },
-];
-
-/** The path by arc length: s (mm) → point, and the total length. */
-function byLength(path: Path): { length: number; at: (s: number) => [number, number] } {
-  const n = 4000;
-  const pts = Array.from({ length: n + 1 }, (_, i) => path(i / n));
-  const cum = [0];
-  for (let i = 1; i <= n; i++) cum.push(cum[i - 1] + Math.hypot(pts[i][0] - pts[i - 1][0], pts[i][1] - pts[i - 1][1]));
-  const length = cum[n];
-  return {
-    length,
-    at: (s) => {
-      const target = Math.max(0, Math.min(length, s));
-      let lo = 0;
-      let hi = n;
-      while (hi - lo > 1) {
-        const mid = (lo + hi) >> 1;
-        if (cum[mid] <= target) lo = mid;
-        else hi = mid;
-      }
-      const f = cum[hi] > cum[lo] ? (target - cum[lo]) / (cum[hi] - cum[lo]) : 0;
-      return [pts[lo][0] + f * (pts[hi][0] - pts[lo][0]), pts[lo][1] + f * (pts[hi][1] - pts[lo][1])];
-    },
-  };
-}
 
 // --- the page ---
 
@@ -254,44 +200,6 @@ async function drawStroke(page: Page, toCanvasPx: (p: [number, number]) => [numb
   return r;
 }
 
-// --- the figures ---
-
-/** Author µs at which the ink passes nearest to (x, y), searching forward from sample `from`; and that sample. */
-function passTime(ink: number[], x: number, y: number, from: number): { t: number; i: number; d: number } {
-  let best = Infinity;
-  let bi = from;
-  // The tool passes each point once, in order: look a little ahead of the last match only (≤ 20 mm of ink).
-  let walked = 0;
-  for (let i = from; i + 1 < ink.length / 3; i++) {
-    const ax = ink[3 * i];
-    const ay = ink[3 * i + 1];
-    const bx = ink[3 * i + 3];
-    const by = ink[3 * i + 4];
-    const dx = bx - ax;
-    const dy = by - ay;
-    const l2 = dx * dx + dy * dy;
-    const f = l2 > 0 ? Math.max(0, Math.min(1, ((x - ax) * dx + (y - ay) * dy) / l2)) : 0;
-    const d = Math.hypot(x - (ax + f * dx), y - (ay + f * dy));
-    if (d < best) {
-      best = d;
-      bi = i + f;
-    }
-    walked += Math.sqrt(l2);
-    if (walked > 20 && best < 0.5) break;
-  }
-  const i = Math.floor(bi);
-  const f = bi - i;
-  const t = ink[3 * i + 2] + f * ((ink[3 * i + 5] ?? ink[3 * i + 2]) - ink[3 * i + 2]);
-  return { t, i, d: best };
-}
-
-function percentile(sorted: number[], q: number): number {
-  if (sorted.length === 0) return NaN;
-  return sorted[Math.min(sorted.length - 1, Math.max(0, Math.ceil(q * sorted.length) - 1))];
-}
-
-const round = (v: number, d = 1) => Math.round(v * 10 ** d) / 10 ** d;
-
 await waitForServer();
 const browser = await chromium.launch({ executablePath: process.env.CHROMIUM_PATH ?? '/usr/bin/chromium', args: ARGS });
 const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
@@ -327,85 +235,28 @@ if (truth.strokes.length !== STROKES.length || truth.ink.length !== STROKES.leng
   throw new Error(`expected ${STROKES.length} strokes and as many inked, got ${truth.strokes.length} received and ${truth.ink.length} inked (log: ${errors.join(' | ')})`);
 }
 
-const lags: number[] = [];
-/** ms from a pointer event to the worker taking its point, on the author's clock (negative: the paced simulator trailed the wall clock). */
-const arrivals: number[] = [];
-let stops = 0;
-const kept: number[] = [];
-for (const [k, spec] of STROKES.entries()) {
-  if (spec.kind !== 'smooth') continue;
-  const pts = truth.strokes[k].points;
-  const ink = truth.ink[k];
-  let from = 0;
-  const passes: number[] = [];
-  for (let j = 0; j < pts.length / 3; j++) {
-    const p = passTime(ink, pts[3 * j], pts[3 * j + 1], from);
-    from = p.i;
-    passes.push(p.t);
-    if (j > 0) lags.push((p.t - pts[3 * j + 2]) / 1000);
-    arrivals.push((truth.strokes[k].arrived[j] - pts[3 * j + 2]) / 1000);
-  }
-  // Rest inside the curve: a gap in the ink samples between the second point's pass and the second-to-last's.
-  const tA = passes[1];
-  const tB = passes[passes.length - 2];
-  for (let i = 1; i < ink.length / 3; i++) {
-    const t = ink[3 * i + 2];
-    if (t > tA && t < tB && t - ink[3 * i - 1] > 5000) stops++;
-  }
-  // The pointer's sampling interval after thinning.
-  const thinner = new DistanceThinner(truth.tolerance_mm);
-  let lastKept = NaN;
-  for (let j = 0; j < pts.length / 3; j++) {
-    if (!thinner.push([pts[3 * j], pts[3 * j + 1]])) continue;
-    const t = pts[3 * j + 2];
-    if (j > 0 && Number.isFinite(lastKept)) kept.push((t - lastKept) / 1000);
-    lastKept = t;
-  }
-}
-lags.sort((a, b) => a - b);
-arrivals.sort((a, b) => a - b);
-const sampling = kept.reduce((a, b) => a + b, 0) / kept.length;
-const brakeMs = (50 / (2 * truth.limits.maxAcceleration)) * 1000;
-const leadMs = truth.lead_us / 1000;
-const lagFloorMs = brakeMs + leadMs + sampling;
-
-const strokesMm = truth.strokes.map((s) => s.points.filter((_, i) => i % 3 !== 2));
-const inkMm = truth.ink.map((s) => s.filter((_, i) => i % 3 !== 2));
-const inkErrorMm = hausdorff(strokesMm, inkMm);
-
-const fastIndex = STROKES.findIndex((s) => s.kind === 'fast');
-const fastReceived = truth.strokes[fastIndex];
-const fastSent = sent.find((s) => s.id === fastReceived.id)?.points ?? NaN;
-let fastOff = 0;
-for (let j = 0; j < fastReceived.points.length / 3; j++) if (pointDrawingDistance(fastReceived.points[3 * j], fastReceived.points[3 * j + 1], [inkMm[fastIndex]]) > 0.3) fastOff++;
-const pointsDropped = fastSent - fastReceived.points.length / 3 + fastOff;
+const chromiumFigures = drawFigures(truth, STROKES, sent.find((x) => x.id === truth.strokes[STROKES.findIndex((k) => k.kind === 'fast')].id)?.points ?? NaN);
+const timingValid = worstGapMs <= 3 * SAMPLE_MS && chromiumFigures.pointArrivalMs.min >= -5;
+console.error('[draw] the same strokes in virtual time');
+const virtual = await drawVirtual(STROKES);
+const virtualFigures = drawFigures(virtual.truth, STROKES, virtual.fastSent);
+const { pointArrivalMs: _exact, ...virtualTime } = virtualFigures;
+void _exact;
 
 const result = {
   bench: 'draw',
-  toolLagMs: { p50: round(percentile(lags, 0.5)), p99: round(percentile(lags, 0.99)), max: round(lags.at(-1) ?? NaN) },
-  lagFloorMs: round(lagFloorMs),
-  lagFloorTerms: { brakeMs_v_over_2a: round(brakeMs), leadMs_streamer: round(leadMs), samplingMs_pointer_after_thinning: round(sampling) },
-  lagPoints: lags.length,
-  stopsInsideStrokes: stops,
-  inkErrorMm: round(inkErrorMm, 3),
-  pointsDropped,
-  fastStroke: { pointsSent: fastSent, pointsReceived: fastReceived.points.length / 3, behindMaxMm: round(fastReceived.behindMax_mm), waitingMax: fastReceived.waitingMax },
+  ...chromiumFigures,
   pointerWorstGapMs: round(worstGapMs),
-  pointArrivalMs: { min: round(arrivals[0]), p50: round(percentile(arrivals, 0.5)), max: round(arrivals.at(-1) ?? NaN) },
-  // The timing figures mean what they say only if the pointer kept its pace and the
-  // simulator kept up with the wall clock (see pointerWorstGapMs, pointArrivalMs).
-  timingValid: worstGapMs <= 3 * SAMPLE_MS && arrivals[0] >= -5,
-  loadAverage: loadavg()[0],
-  strokes: STROKES.map((s, k) => ({ name: s.name, speed: s.speed, points: truth.strokes[k].points.length / 3, inkPoints: truth.ink[k].length / 3 })),
+  // The chromium timing figures mean what they say only if the pointer kept its pace
+  // and the simulator kept up with the wall clock (pointerWorstGapMs, pointArrivalMs).
+  timingValid,
+  loadAverage: round(loadavg()[0]),
   logWarnings: errors.length,
-  targets: { toolLagP99MaxMs: round(lagFloorMs + 5), stopsInsideStrokes: 0, inkErrorMm: 0.3, pointsDropped: 0 },
-  pass: {
-    toolLag: percentile(lags, 0.99) <= lagFloorMs + 5,
-    stops: stops === 0,
-    ink: inkErrorMm <= 0.3,
-    dropped: pointsDropped === 0,
-  },
+  // The same strokes with an exact pointer in virtual time (bench/drawVirtual.ts).
+  virtualTime,
+  virtualWarnings: virtual.warnings.length,
 };
 if (errors.length) console.error(`[draw] log warnings: ${errors.join(' | ')}`);
+if (virtual.warnings.length) console.error(`[draw] virtual-time warnings: ${virtual.warnings.join(' | ')}`);
 console.log(JSON.stringify(result));
 process.exit(0);
