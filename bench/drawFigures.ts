@@ -8,33 +8,46 @@ import type { DrawTruth } from '../app/tools/plotter/protocol.ts';
 import type { StrokeSpec } from './drawStrokes.ts';
 
 
-/** Author µs at which the ink passes nearest to (x, y), searching forward from sample `from`; and that sample. */
+/** Where on ink segment i (from sample i to i + 1) the point (x, y) is nearest: [fraction, distance]. */
+function nearestOn(ink: number[], i: number, x: number, y: number): [number, number] {
+  const ax = ink[3 * i];
+  const ay = ink[3 * i + 1];
+  const dx = ink[3 * i + 3] - ax;
+  const dy = ink[3 * i + 4] - ay;
+  const l2 = dx * dx + dy * dy;
+  const f = l2 > 0 ? Math.max(0, Math.min(1, ((x - ax) * dx + (y - ay) * dy) / l2)) : 0;
+  return [f, Math.hypot(x - (ax + f * dx), y - (ay + f * dy))];
+}
+
+/** The pen adds an ink sample only when the tool moved this far (core/sim/presets/blotPlotter.ts): distances this close are one pass. */
+const SAMPLE_MIN_MM = 0.01;
+
+/**
+ * Author µs at which the ink passes (x, y), searching forward from sample `from`:
+ * the earliest moment the ink comes within SAMPLE_MIN_MM of its nearest approach
+ * (interpolated along the segment between two 1 ms samples). Earliest, not nearest:
+ * a tool that comes to rest on the point (a stroke's end, while the pen lifts)
+ * stays at the nearest distance for a while. Also returns that sample.
+ */
 function passTime(ink: number[], x: number, y: number, from: number): { t: number; i: number; d: number } {
   let best = Infinity;
-  let bi = from;
   // The tool passes each point once, in order: look a little ahead of the last match only (≤ 20 mm of ink).
   let walked = 0;
+  let end = from;
   for (let i = from; i + 1 < ink.length / 3; i++) {
-    const ax = ink[3 * i];
-    const ay = ink[3 * i + 1];
-    const bx = ink[3 * i + 3];
-    const by = ink[3 * i + 4];
-    const dx = bx - ax;
-    const dy = by - ay;
-    const l2 = dx * dx + dy * dy;
-    const f = l2 > 0 ? Math.max(0, Math.min(1, ((x - ax) * dx + (y - ay) * dy) / l2)) : 0;
-    const d = Math.hypot(x - (ax + f * dx), y - (ay + f * dy));
-    if (d < best) {
-      best = d;
-      bi = i + f;
-    }
-    walked += Math.sqrt(l2);
+    best = Math.min(best, nearestOn(ink, i, x, y)[1]);
+    end = i;
+    walked += Math.hypot(ink[3 * i + 3] - ink[3 * i], ink[3 * i + 4] - ink[3 * i + 1]);
     if (walked > 20 && best < 0.5) break;
   }
-  const i = Math.floor(bi);
-  const f = bi - i;
-  const t = ink[3 * i + 2] + f * ((ink[3 * i + 5] ?? ink[3 * i + 2]) - ink[3 * i + 2]);
-  return { t, i, d: best };
+  for (let i = from; i <= end; i++) {
+    const [f, d] = nearestOn(ink, i, x, y);
+    if (d <= best + SAMPLE_MIN_MM) {
+      const t = ink[3 * i + 2] + f * (ink[3 * i + 5] - ink[3 * i + 2]);
+      return { t, i, d };
+    }
+  }
+  return { t: ink[3 * from + 2], i: from, d: best };
 }
 
 export function percentile(sorted: number[], q: number): number {

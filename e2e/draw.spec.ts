@@ -25,6 +25,8 @@ async function toolAt(page: Page): Promise<[number, number]> {
 }
 
 test('a stroke drawn with the mouse: the machine follows before the pointer lifts, and its ink matches the stroke', async ({ page }) => {
+  // 120 real mouse moves, each waiting for a frame: slow on a busy machine.
+  test.setTimeout(150_000);
   await openWorkbench(page);
   await page.getByTestId('machine-menu').click();
   await page.getByTestId('preset-blotPlotter').click();
