@@ -18,6 +18,18 @@ mkdir -p "$out/libraries"
 ln -sfn "$root/firmware" "$out/libraries/MAXL"
 libs="MAXL"
 if grep -q '<Wire.h>' "$dir"/*.ino "$dir"/*.h 2>/dev/null; then libs="MAXL Wire"; fi
+# A sketch's own build options, one line in its build_flags.txt: the
+# library's compile-time options (-DMAXL_...=0, firmware/README.md), which
+# apply to the library's sources too, and AVR code-size options (-mcall-prologues,
+# -mrelax). With LTO the code is generated at link time, so they go to the
+# link too.
+options=""
+if [ -f "$dir/build_flags.txt" ]; then options="$(tr '\n' ' ' < "$dir/build_flags.txt")"; fi
+# make rebuilds on changed sources, not on changed flags: start clean when they changed.
+stamp="$out/$name.flags"
+if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$options" ]; then rm -rf "${out:?}/$name"; fi
+mkdir -p "$out/$name"
+printf '%s' "$options" > "$stamp"
 mk="$out/$name.mk"
 cat > "$mk" <<MK
 ARDUINO_DIR = /usr/share/arduino
@@ -28,7 +40,8 @@ ARDUINO_LIBS = $libs
 OBJDIR = $out/$name
 TARGET = $name
 # Debian's gcc-avr 5.4 lacks DECIMAL_DIG, which the core's WString.cpp uses.
-CPPFLAGS += -DDECIMAL_DIG=9
+CPPFLAGS += -DDECIMAL_DIG=9 $options
+LDFLAGS += $options
 include /usr/share/arduino/Arduino.mk
 MK
 log="$out/$name.log"

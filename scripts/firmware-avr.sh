@@ -2,7 +2,8 @@
 # Builds every firmware example for the Arduino Uno (ATmega328P) with Debian's
 # arduino-core-avr, gcc-avr and arduino-mk, and prints flash and RAM for each.
 # Fails if an example leaves less than 25 % of the Uno's 2048 bytes of RAM
-# free. RAM here is static RAM (.data + .bss, from avr-size); the stack grows
+# free, or less than 10 % of its flash (the room a fix or a feature needs;
+# examples make room with compile-time options, firmware/README.md). RAM here is static RAM (.data + .bss, from avr-size); the stack grows
 # down from the top of RAM into what is left, so the free 25 % is the stack's.
 #
 #   bash scripts/firmware-avr.sh [Example ...]     (default: all examples)
@@ -13,6 +14,7 @@ out="$root/firmware/build/avr"
 RAM_TOTAL=2048
 FLASH_TOTAL=32256  # 32 KiB minus the Uno's 512-byte optiboot
 MIN_FREE_PERCENT=25
+MIN_FLASH_FREE_PERCENT=10
 
 if [ "$#" -gt 0 ]; then examples=("$@"); else
   examples=()
@@ -40,6 +42,9 @@ for name in "${examples[@]}"; do
   fi
   if [ "$flash" -gt "$FLASH_TOTAL" ]; then
     echo "FAIL $name: $flash bytes of flash do not fit in $FLASH_TOTAL"
+    status=1
+  elif [ $((100 * (FLASH_TOTAL - flash))) -lt $((MIN_FLASH_FREE_PERCENT * FLASH_TOTAL)) ]; then
+    echo "FAIL $name: $flash bytes of flash leave $((FLASH_TOTAL - flash)) bytes free, under $MIN_FLASH_FREE_PERCENT %; leave out what it does not use (firmware/README.md, compile-time options)"
     status=1
   fi
 done

@@ -41,8 +41,14 @@ status=0
 for name in "${examples[@]}"; do
   sketch="firmware/examples/$name/$name.ino"
   target="$out/$name.wasm"
+  # The example's compile-time options (-D..., firmware/README.md), as on the
+  # board; its AVR code-size options (-m...) are the AVR build's only.
+  options=()
+  if [ -f "firmware/examples/$name/build_flags.txt" ]; then
+    for o in $(cat "firmware/examples/$name/build_flags.txt"); do case "$o" in -D*) options+=("$o") ;; esac; done
+  fi
   # An .ino is C++ with Arduino.h included first, as the Arduino tools build it.
-  if ! clang++ "${flags[@]}" -Ifirmware/examples/"$name" \
+  if ! clang++ "${flags[@]}" "${options[@]}" -Ifirmware/examples/"$name" \
       -x c++ -include Arduino.h "$sketch" -x none "${library[@]}" "${shim[@]}" -o "$target"; then
     echo "FAIL $name: wasm build error"
     status=1

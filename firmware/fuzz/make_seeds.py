@@ -40,7 +40,22 @@ timing = frame('TIMING', u16(0) + bytes([1, 1]) + f32(2000.0) + u32(start)
                + bytes([0x39]) + bytes([0xd0, 0x86, 0x03]) + bytes([0xa0, 0x9c, 0x01]) + bytes([0xd0, 0x86, 0x03]) + f32(20.0))
 events = frame('EVENTS', u16(0) + bytes([0]) + u16(0) + bytes([2]) + bytes([0]) + f32(1.0) + bytes([0xe8, 0x07]) + f32(0.0))
 
+# A dwell (length 0, p1 = where it starts) between two segments; timed as one cruise
+# phase of 120 ms at alpha 0, then an instant (0 µs) of length 0 after the last.
+dwell_geometry = frame('GEOMETRY', u16(0) + bytes([4, 1]) + i32(0) + i32(0)
+                       + f32(10.0) + i32(655360) + i32(-327680) + f32(0.0) + i32(655360) + i32(-327680)
+                       + f32(5.0) + i32(983040) + i32(0) + f32(0.0) + i32(983040) + i32(0))
+dwell_timing = frame('TIMING', u16(0) + bytes([4, 1]) + f32(2000.0) + u32(start)
+                     + bytes([0x39]) + bytes([0xd0, 0x86, 0x03]) + bytes([0xa0, 0x9c, 0x01]) + bytes([0xd0, 0x86, 0x03]) + f32(20.0)
+                     + bytes([0x02]) + bytes([0xc0, 0xa9, 0x07]) + f32(0.0)
+                     + bytes([0x39]) + bytes([0xd0, 0x86, 0x03]) + bytes([0xa0, 0x9c, 0x01]) + bytes([0xd0, 0x86, 0x03]) + f32(40.0)
+                     + bytes([0x02, 0x00]) + f32(0.0))
+dwell_events = frame('EVENTS', u16(1) + bytes([0]) + u16(0) + bytes([2]) + bytes([0]) + f32(1.0) + bytes([0xe0, 0xd4, 0x03]) + f32(0.5))
+
 seeds = {
+    'dwell': hello + subs + dwell_geometry + dwell_timing + dwell_events + loops(16, 255) + advance(300000) + loops(16, 200) + advance(300000) + loops(4, 10),
+    # timing for the first segment only, ending at speed: braking passes the provisional dwell
+    'dwell-starve': hello + subs + dwell_geometry + frame('TIMING', u16(0) + bytes([1, 1]) + f32(500.0) + u32(start) + bytes([0x02, 0x90, 0x4e]) + f32(0.0)) + advance(200000) + loops(8, 255),
     'session': hello + subs,
     'move': hello + subs + geometry + timing + events + loops(16, 255) + advance(100000) + loops(16, 200),
     'starve': hello + subs + geometry + frame('TIMING', u16(0) + bytes([1, 1]) + f32(500.0) + u32(start) + bytes([0x02, 0x90, 0x4e]) + f32(0.0)) + advance(200000) + loops(8, 255),

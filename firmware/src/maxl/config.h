@@ -123,7 +123,32 @@
 #endif
 #endif
 
-// Steppers the timer serves; more step from loop().
+// ---- Features an example may leave out (firmware/README.md, "Compile-time
+// options"). Each is on unless the build sets it to 0 (-DMAXL_...=0; the
+// examples' build_flags.txt). A sketch that uses a feature left out does not
+// compile.
+
+// MAXL_Stepper stepping from loop() (polled), as well as from the step timer.
+// 0 keeps only timed stepping: for boards with MAXL_STEP_TIMER, whose sketches
+// have at most MAXL_STEP_CHANNELS steppers. Without a step timer steppers can
+// only poll, so it stays 1 there.
+#ifndef MAXL_STEPPER_POLLING
+#define MAXL_STEPPER_POLLING 1
+#endif
+#if !MAXL_STEPPER_POLLING && !MAXL_STEP_TIMER
+#undef MAXL_STEPPER_POLLING
+#define MAXL_STEPPER_POLLING 1
+#endif
+
+// HALT mode 1, "brake along the path from time `at`" (protocol §4, §6). 0
+// leaves it out: mode 1 is then answered MALFORMED like an unknown mode. The
+// TypeScript author never sends it (it pauses and cancels by planning to rest,
+// and stops with mode 0); braking when the timing runs out stays, always.
+#ifndef MAXL_HALT_BRAKE
+#define MAXL_HALT_BRAKE 1
+#endif
+
+// Steppers the timer serves; more step from loop() (with MAXL_STEPPER_POLLING).
 #ifndef MAXL_STEP_CHANNELS
 #define MAXL_STEP_CHANNELS 3
 #endif

@@ -247,6 +247,7 @@ MAXL_Device::Answer MAXL_Device::onHalt(const uint8_t* p, uint8_t n) {
     for (uint8_t i = 0; i < MAXL_EVENT_SLOTS; i++) eventTracks_[i].active = false;
     return ack();
   }
+#if MAXL_HALT_BRAKE
   if (m.mode != HALT_BRAKE_AT) return nack(nack::MALFORMED, type::HALT);
   bool onTime = motion_.haltBrakeAt(now_, m.at);
   if (!onTime) flags_ |= status_flag::LATE;
@@ -255,6 +256,9 @@ MAXL_Device::Answer MAXL_Device::onHalt(const uint8_t* p, uint8_t n) {
   const SegmentQueue& q = motion_.queue();
   forgetEventTracksFrom((uint16_t)(q.headId() + q.timed()));
   return ack();
+#else
+  return nack(nack::MALFORMED, type::HALT);  // built without HALT mode 1 (config.h)
+#endif
 }
 
 void MAXL_Device::forgetEventTracksFrom(uint16_t segmentId) {

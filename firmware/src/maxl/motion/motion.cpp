@@ -93,6 +93,7 @@ void Motion::advance(uint32_t now) {
         break;
       }
       case RUNNING:
+#if MAXL_HALT_BRAKE
         if (haltPending_ && haltSegment_ == queue_.headId() && timeBefore(haltAt_, phaseEnd_)) {
           if (timeBefore(now, haltAt_)) {
             evaluate(now);
@@ -101,6 +102,7 @@ void Motion::advance(uint32_t now) {
           brakeFromHalt(haltAt_);
           break;
         }
+#endif
         if (timeBefore(now, phaseEnd_)) {
           evaluate(now);
           return;
@@ -302,6 +304,7 @@ void Motion::finishBrakePiece(uint32_t t) {
     stopHere(lastId_, 1.0f);  // out of provisional geometry while still moving
 }
 
+#if MAXL_HALT_BRAKE
 // HALT mode 1 reached its time t inside the running head segment.
 void Motion::brakeFromHalt(uint32_t t) {
   moveChunkTo(t);
@@ -315,6 +318,7 @@ void Motion::brakeFromHalt(uint32_t t) {
   haltPending_ = false;
   beginBrake(t, speed, sigma, pos_);
 }
+#endif
 
 void Motion::stopHere(uint16_t segmentId, float sigma) {
   changed();
@@ -367,7 +371,7 @@ bool Motion::lookSpan(Lookahead& a, uint8_t slot, uint32_t from, uint32_t& until
       a.phase = 0xFF;
       a.state = Lookahead::RUN;
     } else {
-      if (haltPending_ && haltSegment_ == a.segment && timeBefore(haltAt_, a.pieceEnd)) {
+      if (haltPending() && haltSegment_ == a.segment && timeBefore(haltAt_, a.pieceEnd)) {
         // Motion brakes at haltAt_: what follows is Motion's to decide.
         until = haltAt_;
         return timeBefore(from, until);
@@ -426,6 +430,7 @@ void Motion::haltNow(uint32_t now) {
   timingGiven_ = false;
 }
 
+#if MAXL_HALT_BRAKE
 bool Motion::haltBrakeAt(uint32_t now, uint32_t at) {
   changed();
   if (timeBefore(at, now)) {
@@ -456,10 +461,11 @@ bool Motion::haltBrakeAt(uint32_t now, uint32_t at) {
   }
   return true;
 }
+#endif
 
 void Motion::dropFrom(uint8_t index) {
   queue_.truncate(index);
-  if (haltPending_ && (uint16_t)(haltSegment_ - queue_.headId()) >= index) haltPending_ = false;
+  if (haltPending() && (uint16_t)(haltSegment_ - queue_.headId()) >= index) haltPending_ = false;
 }
 
 // ------------------------------------------------------------------ floats on demand
@@ -507,7 +513,10 @@ void Motion::where(uint32_t now, uint16_t& segmentId, float& sigma) {
   segmentId = queue_.headId();
   // Cheap form while running: σ = (p − p0)/Δ on the slot that moves most,
   // from the fixed-point position of the last tick (one float division on an
-  // AVR instead of the phase walk below; STATUS runs in loop() at speed).
+  // AVR instead of the phase walk below; STATUS runs in loop() at speed, which
+  // matters to steppers stepping from loop(): built without polled stepping,
+  // the phase walk, once per phase, is all it takes).
+#if MAXL_STEPPER_POLLING
   if (mode_ == RUNNING && !floatValid_) {
     const Segment& s = queue_.head();
     float best = 0.0f, moved = 0.0f;
@@ -525,6 +534,7 @@ void Motion::where(uint32_t now, uint16_t& segmentId, float& sigma) {
       return;
     }
   }
+#endif
   refreshFloatPhase();
   float tau = clampedSeconds(now, phaseStart_, phaseEnd_);
   sigma = phaseSigma_ + tau * (phaseNu_ + 0.5f * phaseAcc_ * tau);

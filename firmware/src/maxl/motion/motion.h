@@ -56,7 +56,7 @@ class Motion {
   // Advances to `now` (wrap-safe) and evaluates every active slot. The common
   // case, inside the current phase, is inline: one comparison, then evaluate().
   inline __attribute__((always_inline)) void tick(uint32_t now) {
-    if (mode_ == RUNNING && !haltPending_ && (int32_t)(now - phaseEnd_) < 0) {
+    if (mode_ == RUNNING && !haltPending() && (int32_t)(now - phaseEnd_) < 0) {
       evaluate(now);
       return;
     }
@@ -106,7 +106,9 @@ class Motion {
 
   // ---- commands; call tick(now) first
   void haltNow(uint32_t now);                  // HALT mode 0
+#if MAXL_HALT_BRAKE
   bool haltBrakeAt(uint32_t now, uint32_t at);  // HALT mode 1; false if `at` was past (late)
+#endif
   void dropFrom(uint8_t index);                // REPLACE_TAIL, index checked by the caller
 
   // ---- lookahead (see Lookahead above)
@@ -114,7 +116,7 @@ class Motion {
   // starts or moves to the next piece, a stop, HALT, a new base, a new session.
   uint8_t epoch() const { return epoch_; }
   // HALT mode 1 still ahead: the path is certain only until haltAt().
-  bool haltPending() const { return haltPending_; }
+  bool haltPending() const { return MAXL_HALT_BRAKE && haltPending_; }
   uint32_t haltAt() const { return haltAt_; }
   // Starts `a` where Motion is now (last tick) and returns the slot's position there.
   int32_t lookFrom(Lookahead& a, uint8_t slot) const;
@@ -144,7 +146,9 @@ class Motion {
   void finishSegment(uint32_t t);
   void beginBrake(uint32_t t, float speed, float sigma0, const int32_t* from);
   void finishBrakePiece(uint32_t t);
+#if MAXL_HALT_BRAKE
   void brakeFromHalt(uint32_t t);
+#endif
   void stopHere(uint16_t segmentId, float sigma);
   void advance(uint32_t now);
   void moveChunkTo(uint32_t t);

@@ -69,6 +69,7 @@ inline __attribute__((always_inline)) void MAXL_StepGenerator::thresholdDown() {
   steps_ = (int32_t)((uint32_t)steps_ - 1u);
 }
 
+#if MAXL_STEPPER_POLLING
 // One pulse per step, from loop() (the thresholds have moved already).
 void MAXL_StepGenerator::pulses(uint8_t count, int8_t direction) {
   if (!count) return;
@@ -97,6 +98,7 @@ bool MAXL_StepGenerator::moveTo(int32_t units) {
   // not possible, the thresholds are half a step either side of n·s)
   return n < budget || (units < upCeil() && units >= downCeil());
 }
+#endif  // MAXL_STEPPER_POLLING
 
 // ---------------------------------------------------------------- timed
 

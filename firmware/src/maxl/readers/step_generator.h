@@ -52,10 +52,12 @@ class MAXL_StepGenerator {
   // Declares that the motor is at `units` without moving it (a session's
   // reference position): step count = round(units / s).
   void reference(int32_t units);
+#if MAXL_STEPPER_POLLING
   // Emits every step between the motor's step and the one `units` rounds to,
   // up to MAXL_MAX_STEPS_PER_EVALUATION per call (the rest on the next calls).
   // Returns true when the motor has reached that step.
   bool moveTo(int32_t units);
+#endif
 
   // The step count: emitted (polled), or planned (timed: MAXL_Stepper
   // subtracts what its timer has still to send).
@@ -82,7 +84,9 @@ class MAXL_StepGenerator {
 #endif
 
  private:
+#if MAXL_STEPPER_POLLING
   void pulses(uint8_t count, int8_t direction);
+#endif
   // Next thresholds' ceilings (see the top of this file).
   int32_t upCeil() const { return (int32_t)((uint32_t)upWhole_ + (upFrac_ != 0)); }
   int32_t downCeil() const { return (int32_t)((uint32_t)upWhole_ - (uint32_t)sWhole_ + (upFrac_ > sFrac_)); }

@@ -26,6 +26,9 @@ void MAXL_Stepper::onBegin() {
 }
 
 bool MAXL_Stepper::useStepTimer(bool on) {
+#if !MAXL_STEPPER_POLLING
+  on = true;  // timed stepping is all there is
+#endif
 #if MAXL_STEP_TIMER
   wantTimer_ = on;
   if (on && !timed_) {
@@ -59,7 +62,9 @@ void MAXL_Stepper::onPosition(int32_t units, bool first) {
     generator_.reference(units);
     return;
   }
+#if MAXL_STEPPER_POLLING
   if (!timed_) behind_ = !generator_.moveTo(units);
+#endif
 }
 
 // A bounded catch-up (see MAXL_MAX_STEPS_PER_EVALUATION) goes on even when
@@ -72,7 +77,9 @@ void MAXL_Stepper::onTick(MAXL_Device& device) {
     return;
   }
 #endif
+#if MAXL_STEPPER_POLLING
   if (behind_) behind_ = !generator_.moveTo(positionUnits());
+#endif
 }
 
 void MAXL_Stepper::onUnsubscribe() {

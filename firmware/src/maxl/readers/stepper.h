@@ -59,7 +59,9 @@ class MAXL_Stepper : public MAXL_TrackPositionLinear {
   // Steps from the step timer's interrupt (true) or from loop() (false).
   // Asks for one; returns what it got (false without a timer, with invalid
   // pins, or when MAXL_STEP_CHANNELS steppers already use it). Change it only
-  // while not subscribed. The default is MAXL_STEP_TIMER_DEFAULT.
+  // while not subscribed. The default is MAXL_STEP_TIMER_DEFAULT. Built with
+  // MAXL_STEPPER_POLLING 0 it always asks for the timer, and a stepper that
+  // does not get it (invalid pins, too many steppers) does not step.
   bool useStepTimer(bool on);
   bool usesStepTimer() const { return timed_; }
 
