@@ -83,7 +83,7 @@ describe('streamer slicing of a long move (hold-to-jog)', () => {
     await sim.stop();
   });
 
-  it("slices a live stream's segments that brake for the queue's end, so the machine follows a braking distance and a lead behind", async () => {
+  it("slices a live stream's segments that brake for the queue's end, so the machine follows a braking distance and a lead behind", { timeout: 30_000 }, async () => {
     const { scheduler, sim, maxl } = await startMachine(lightPainter());
     await maxl.addSegmentToQueue({ endPosition: [10, 10] });
     await scheduler.advance(1_000_000);
