@@ -81,4 +81,25 @@ test('a stroke drawn with the mouse: the machine follows before the pointer lift
   expect(error).toBeLessThanOrEqual(0.3);
   await expect(page.locator('[data-testid=log-entry][data-code=DEVICE_REFUSED]')).toHaveCount(0);
   await expect(page.locator('[data-testid=log-entry][data-code=DRAW_REFUSED]')).toHaveCount(0);
+
+  // Bad input: a stroke that leaves the bed (y > 125 mm). The part outside is refused
+  // with a note, the rest is drawn.
+  const outside: Array<[number, number]> = Array.from({ length: 26 }, (_, k) => [60, 110 + k]);
+  const o0 = toPx(...outside[0]);
+  await page.mouse.move(o0[0], o0[1]);
+  await page.mouse.down();
+  for (const p of outside.slice(1)) {
+    const [x, y] = toPx(...p);
+    await page.mouse.move(x, y);
+    await page.waitForTimeout(12);
+  }
+  await page.mouse.up();
+  await expect(page.locator('[data-testid=log-entry][data-code=DRAW_OUTSIDE]')).toContainText(/Stroke 2 left the soft limits .*: 10\.\d mm outside were not drawn, the rest was/);
+  await expect(page.getByTestId('plotter-status')).toHaveAttribute('data-active', 'false', { timeout: 30_000 });
+  const download2 = page.waitForEvent('download');
+  await page.getByTestId('plotter-save-drawn').click();
+  const ink2 = svgStrokes(await readFile(await (await download2).path(), 'utf8'));
+  expect(ink2).toHaveLength(2);
+  expect(hausdorff([[60, 110, 60, 125]], [ink2[1]])).toBeLessThanOrEqual(0.3);
+  await screenshot(page, '21-plotter-stroke-outside-the-bed');
 });

@@ -183,7 +183,7 @@ describe('live drawing on the simulated Blot', () => {
     await drawStroke(b, drawer, 7, pen, 90, 40, path);
     await runUntilSettled(b, drawer);
     const note = log.find((l) => l.code === 'DRAW_OUTSIDE');
-    expect(note?.message).toMatch(/Stroke 7 left the soft limits \(from 125\.\d, 50\.0 mm; the bed is 0–125 × 0–125 mm\): \d+\.\d mm outside were not drawn, the rest was/);
+    expect(note?.message).toMatch(/Stroke 7 left the soft limits \(first point outside: 125\.\d, 50\.0 mm; the bed is 0–125 × 0–125 mm\): \d+\.\d mm outside were not drawn, the rest was/);
     // 15 + 10 + 15 mm outside, less what the pointer's samples cut off the corners.
     expect(Number(/: ([\d.]+) mm outside/.exec(note!.message)![1])).toBeCloseTo(40, 0);
     const inked = ink(b);

@@ -189,7 +189,7 @@ export class LiveDrawer {
       this.host.log(
         'warning',
         'DRAW_OUTSIDE',
-        `Stroke ${id} left the soft limits (from ${x.toFixed(1)}, ${y.toFixed(1)} mm; the bed is ${lo[0]}–${hi[0]} × ${lo[1]}–${hi[1]} mm): ${s.clipper.refused_mm.toFixed(1)} mm outside were not drawn, the rest was.`,
+        `Stroke ${id} left the soft limits (first point outside: ${x.toFixed(1)}, ${y.toFixed(1)} mm; the bed is ${lo[0]}–${hi[0]} × ${lo[1]}–${hi[1]} mm): ${s.clipper.refused_mm.toFixed(1)} mm outside were not drawn, the rest was.`,
       );
     }
     this.feed();
