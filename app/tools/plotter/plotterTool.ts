@@ -249,9 +249,9 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand> {
       title = 'MAXL plotter: the pen-down path as planned';
     } else {
       const ink = this.ink();
-      // On real boards there is no ink to read: the plan's pen-down path that the machine ran is the best record.
+      // A real board reports no ink: the pen-down path sent to it (the planned file's) is the best record there is.
       strokes = ink ?? this.planned.strokes;
-      title = ink ? 'MAXL plotter: the simulated pen’s ink (as drawn)' : 'MAXL plotter: the pen-down path the machine ran (as planned: a real board reports no ink)';
+      title = ink ? 'MAXL plotter: the simulated pen’s ink (as drawn)' : 'MAXL plotter: the pen-down path sent to the machine (a real board reports no ink)';
     }
     // The page: the soft limits if bounded, else the drawing's own bounds.
     const page = pageOf(lo, hi, strokes);
