@@ -16,6 +16,7 @@ import { PacedScheduler, type Maxl } from '../../../core/index.ts';
 import type { ToolContext, WorkbenchTool } from '../../worker/toolContext.ts';
 import { LiveDrawer } from './live/liveDrawer.ts';
 import { PlannedPen } from './live/plannedPen.ts';
+import { SimulatedInk } from './live/simulatedInk.ts';
 import { DEFAULT_TOLERANCE_MM, penDefaults, penSettingsProblem } from './penDefaults.ts';
 import type { PenSettings } from './penSequence.ts';
 import type { DrawTruth, PlotterCommand, PlotterEvent } from './protocol.ts';
@@ -33,11 +34,7 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand> {
   private readonly planned = new PlannedPen(() => this.pen);
   private statusChanged = true;
   private lastInk = 0;
-  /** Pen strokes of the plant shown and saved from here on (draw-clear moves it), and how many points of each were posted. */
-  private inkFrom = 0;
-  private inkPosted: number[] = [];
-  /** The simulated machine the ink comes from: another one starts its ink afresh. */
-  private inkSim: unknown = null;
+  private readonly ink = new SimulatedInk();
   /** Dev/test hook: each stroke's points on the author's clock, when each arrived, and how far the machine fell behind (docs/test-hooks.md). */
   private readonly received = new Map<number, { points: number[]; arrived: number[]; behindMax_mm: number; waitingMax: number }>();
 
@@ -170,8 +167,7 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand> {
       case 'draw-clear':
         this.received.clear();
         this.planned.clear();
-        this.inkFrom = this.ctx.sim?.plant.pen?.strokes.length ?? 0;
-        this.inkPosted = [];
+        this.ink.clear();
         this.post({ tool: 'plotter', type: 'draw-cleared' });
         return;
       case 'draw-save':
@@ -192,47 +188,12 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand> {
     return s.now() - (performance.now() * 1000 - wall_us);
   }
 
-  /** The plant's pen strokes from the last clear on (x, y pairs), or null on real boards. */
-  private ink(): number[][] | null {
-    const pen = this.ctx.sim?.plant.pen;
-    if (!pen) return null;
-    this.ctx.sim?.sync();
-    return pen.strokes.slice(this.inkFrom).map((s) => {
-      const xy = new Array<number>(s.x.length * 2);
-      for (let i = 0; i < s.x.length; i++) {
-        xy[2 * i] = s.x[i];
-        xy[2 * i + 1] = s.y[i];
-      }
-      return xy;
-    });
-  }
-
   private postInk(): void {
-    if (this.ctx.sim !== this.inkSim) {
-      this.inkSim = this.ctx.sim;
-      this.inkFrom = 0;
-      this.inkPosted = [];
+    if (this.ink.follow(this.ctx.sim)) {
       this.planned.clear();
       this.post({ tool: 'plotter', type: 'draw-cleared' });
     }
-    const pen = this.ctx.sim?.plant.pen;
-    if (!pen) return;
-    const pieces: Array<{ index: number; from: number; xy: Float32Array }> = [];
-    for (let i = this.inkFrom; i < pen.strokes.length; i++) {
-      const s = pen.strokes[i];
-      const k = i - this.inkFrom;
-      const from = this.inkPosted[k] ?? 0;
-      if (s.x.length <= from) continue;
-      // Repeat the last point posted, so the piece joins the one before it.
-      const start = Math.max(0, from - 1);
-      const xy = new Float32Array((s.x.length - start) * 2);
-      for (let j = start; j < s.x.length; j++) {
-        xy[2 * (j - start)] = s.x[j];
-        xy[2 * (j - start) + 1] = s.y[j];
-      }
-      pieces.push({ index: k, from: start, xy });
-      this.inkPosted[k] = s.x.length;
-    }
+    const pieces = this.ink.newPieces();
     if (pieces.length > 0) this.post({ tool: 'plotter', type: 'ink', pieces }, pieces.map((p) => p.xy.buffer));
   }
 
@@ -248,7 +209,7 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand> {
       strokes = this.planned.strokes;
       title = 'MAXL plotter: the pen-down path as planned';
     } else {
-      const ink = this.ink();
+      const ink = this.ink.strokes();
       // A real board reports no ink: the pen-down path sent to it (the planned file's) is the best record there is.
       strokes = ink ?? this.planned.strokes;
       title = ink ? 'MAXL plotter: the simulated pen’s ink (as drawn)' : 'MAXL plotter: the pen-down path sent to the machine (a real board reports no ink)';
@@ -260,9 +221,7 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand> {
   }
 
   private truth(): DrawTruth {
-    const pen = this.ctx.sim?.plant.pen;
-    this.ctx.sim?.sync();
-    const ink = (pen?.strokes.slice(this.inkFrom) ?? []).map((s) => s.x.flatMap((x, i) => [x, s.y[i], s.t_us[i]]));
+    const ink = this.ink.strokes(true) ?? [];
     const maxl = this.ctx.maxl;
     const status = this.live.status();
     return {
