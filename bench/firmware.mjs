@@ -15,6 +15,8 @@
 //                         bench/firmware/simavr_steps.c); searched in 250 Hz
 //   avrStepRateTwoSteppersHz  the same for two steppers on the timer at once
 //                         (BlotPlotter's CoreXY pair), each at the rate
+//                         (StepRate and StepRateTwo are built with the Stepper
+//                         and BlotPlotter examples' build_flags.txt: firmware/README.md)
 //   hostInstructionsPerEval  the same evaluation on the host (callgrind)
 //   bytesPerLinearSegment merged from bench/segment-bytes.ts (the TS encoder)
 //                         when that file exists

@@ -99,7 +99,7 @@ export class Maxl {
     return this.queue.appendValidated(validated, true);
   }
 
-  /** Zero-length moves skipped so far. */
+  /** Zero-length moves skipped so far (those that set no event: one that does is a 0-s dwell). */
   get skippedZeroLength(): number {
     return this.queue.skippedZeroLength;
   }

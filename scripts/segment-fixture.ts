@@ -48,7 +48,8 @@ interface CaseSpec {
   describe: string;
   config: MaxlConfig;
   start: number[];
-  path: number[][];
+  /** points to move to, and dwells (s) */
+  path: Array<number[] | { dwell_s: number }>;
   /** position tracks this device reads, in slot order */
   tracks: string[];
   clock: { offset_us: number; ppm: number };
@@ -84,11 +85,20 @@ const CASES: CaseSpec[] = [
     tracks: ['x', 'y'],
     clock: { offset_us: U32 - 1_300_000, ppm: 35 },
   },
+  {
+    name: 'plotter-with-dwells',
+    describe: 'CoreXY strokes cut by dwells (a pen dropping and lifting: 120 ms and 90 ms) and an instant (a 0-s dwell)',
+    config: { motionAxes: ['x', 'y'], limits: LIMITS, transforms: [{ type: 'corexy', from: ['x', 'y'], to: ['a', 'b'] }] },
+    start: [5, 5],
+    path: [[20, 5], { dwell_s: 0.12 }, [20, 15], [30, 15], { dwell_s: 0.09 }, [40, 30], { dwell_s: 0 }, [45, 30], { dwell_s: 0.12 }, [5, 5]],
+    tracks: ['a', 'b'],
+    clock: { offset_us: 42_000_000, ppm: 60 },
+  },
 ];
 
 function buildCase(spec: CaseSpec): FixtureCase {
   const maxl = createMAXL(spec.config, { initialPosition: spec.start });
-  for (const p of spec.path) maxl.queue.append({ endPosition: p });
+  for (const p of spec.path) maxl.queue.append(Array.isArray(p) ? { endPosition: p } : p);
   maxl.queue.planToRest();
   const author0 = 1_000_000; // the job starts 1 s into the author's clock
   const segments = [];
