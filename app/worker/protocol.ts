@@ -12,6 +12,7 @@
 import type { MaxlConfig, TransformConfig } from '../../core/index.ts';
 import type { LightpaintCommand, LightpaintEvent } from '../tools/lightpaint/protocol.ts';
 import type { FileCommand, FileEvent } from '../tools/plotter/files/protocol.ts';
+import type { PlotterCommand, PlotterEvent } from '../tools/plotter/protocol.ts';
 
 // ---------------------------------------------------------------------------
 // Shared shapes
@@ -206,9 +207,9 @@ export interface Snapshot {
 // The tools (app/tools/<name>/protocol.ts): each command and event carries `tool`.
 
 /** Every tool's commands. */
-export type ToolCommand = LightpaintCommand | FileCommand;
+export type ToolCommand = PlotterCommand | FileCommand | LightpaintCommand;
 /** Every tool's events. */
-export type ToolEvent = LightpaintEvent | FileEvent;
+export type ToolEvent = PlotterEvent | FileEvent | LightpaintEvent;
 
 // ---------------------------------------------------------------------------
 // main → worker

@@ -5,12 +5,11 @@
 import type { ToolContext, WorkbenchTool } from './toolContext.ts';
 import type { ToolCommand } from './protocol.ts';
 import { LightpaintTool } from '../tools/lightpaint/lightpaintTool.ts';
-import { FileJobs } from '../tools/plotter/files/fileJobs.ts';
+import { PlotterTool } from '../tools/plotter/plotterTool.ts';
 
 export function createTools(ctx: ToolContext): Map<string, WorkbenchTool<ToolCommand>> {
   const tools = new Map<string, WorkbenchTool<ToolCommand>>();
+  tools.set('plotter', new PlotterTool(ctx) as WorkbenchTool<ToolCommand>);
   tools.set('lightpaint', new LightpaintTool(ctx) as WorkbenchTool<ToolCommand>);
-  // Temporary: the plotter's file commands (file-*) only, until the plotter's own router takes them.
-  tools.set('plotter', new FileJobs(ctx) as WorkbenchTool<ToolCommand>);
   return tools;
 }

@@ -96,6 +96,8 @@ interface DeviceState {
 }
 
 const MIN_SPLIT_MM = 0.01;
+/** Segments nearTailRest() looks at after the next one, at most. */
+const TAIL_SCAN = 64;
 
 export class Streamer {
   private readonly queue: TrajectoryQueue;
@@ -256,10 +258,13 @@ export class Streamer {
       // A segment with more queued after it is locked whole up to `wholeSegment_us`:
       // slicing it would only cost bytes (each slice is fresh geometry and timing),
       // and a pause still comes within that time. The last queued segment (a live
-      // stream's, which the next point may extend) is always sliced.
+      // stream's, which the next point may extend) is always sliced, and so is one
+      // whose plan brakes for the queue's end (nearTailRest): locked whole, its
+      // braking would be fixed a whole segment early, and a live stream's next point
+      // could no longer lift it.
       const slice = this.options.slice_us;
       const duration_us = next.duration_s * 1e6;
-      const last = this.queue.untransmittedCount === 1;
+      const last = this.queue.untransmittedCount === 1 || this.nearTailRest(next);
       const beyond = duration_us > this.lead_us + 2 * slice ? slice : 0;
       const reach = horizon + slice - start > 0 ? horizon + slice - start : beyond;
       if (reach > 0 && duration_us > reach + slice && (last || duration_us > this.options.wholeSegment_us)) {
@@ -293,6 +298,29 @@ export class Streamer {
     if (this.queue.transmittedEnd_us > now || (this.queue.untransmittedCount > 0 && this.holdAt !== this.queue.peekUntransmitted())) {
       this.schedulePump(this.options.tick_us);
     }
+  }
+
+  /**
+   * Whether `next`'s plan may be braking for the rest at the queue's end: the path
+   * queued after it is shorter than the distance needed to brake from its cruise
+   * speed, v²/(2a). Then the segment is sliced like the last one, so that a point
+   * appended meanwhile (a live stroke's) replans the braking away instead of
+   * meeting it a segment later. A dwell after it is a rest no new point can lift,
+   * and a queue with more than TAIL_SCAN segments after it is a job's, not a live
+   * stream's: neither counts (and the scan stays short).
+   */
+  private nearTailRest(next: Segment): boolean {
+    const brake = next.cruise2 / (2 * next.accel);
+    if (!(brake > 0)) return false;
+    let after = 0;
+    for (let i = 1; i <= TAIL_SCAN; i++) {
+      const seg = this.queue.untransmittedAt(i);
+      if (!seg) return true;
+      if (seg.source.dwell_s !== null) return false;
+      after += seg.length;
+      if (after >= brake) return false;
+    }
+    return false;
   }
 
   /** Transmitted segments that have not ended yet. */

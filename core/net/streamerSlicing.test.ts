@@ -82,4 +82,38 @@ describe('streamer slicing of a long move (hold-to-jog)', () => {
     await maxl.end();
     await sim.stop();
   });
+
+  it("slices a live stream's segments that brake for the queue's end, so the machine follows a braking distance and a lead behind", { timeout: 30_000 }, async () => {
+    const { scheduler, sim, maxl } = await startMachine(lightPainter());
+    await maxl.addSegmentToQueue({ endPosition: [10, 10] });
+    await scheduler.advance(1_000_000);
+    // A pointer at 50 mm/s along x: a point 0.4 mm on every 8 ms. Each segment is far
+    // shorter than wholeSegment_us, so only braking for the queue's end gets it sliced.
+    const v = 50;
+    const a = maxl.config.limits.maxAccel;
+    const appended: Array<{ x: number; t_us: number }> = [];
+    const reached = new Map<number, number>();
+    for (let k = 1; k <= 150; k++) {
+      const x = 10 + 0.4 * k;
+      void maxl.addSegmentToQueue({ endPosition: [x, 10], maxVelocity: 100 });
+      appended.push({ x, t_us: scheduler.now() });
+      for (let t = 0; t < 8; t++) {
+        await scheduler.advance(1000);
+        const at = maxl.estimate().position[0];
+        for (const p of appended) if (!reached.has(p.x) && at >= p.x - 1e-9) reached.set(p.x, scheduler.now());
+      }
+    }
+    // Once under way (after the first 30 points), the tool reaches each point at most
+    // v/(2a) (braking) + the lead + one point's interval (8 ms) after it was appended,
+    // plus 5 ms: the refill (the timed path is topped up 2 ms past the horizon), the
+    // streamer's 1 ms tick, the 1 ms steps here, and 1 ms to spare. Locked whole, each
+    // segment's braking for the queue's end is fixed a segment early: 35 ms here
+    // against a floor of 28 (sliced: 32).
+    const floor_us = (v / (2 * a)) * 1e6 + maxl.lead_us + 8_000;
+    let worst = 0;
+    for (const p of appended.slice(30, -10)) worst = Math.max(worst, (reached.get(p.x) ?? Infinity) - p.t_us);
+    expect(worst).toBeLessThan(floor_us + 5_000);
+    await maxl.end();
+    await sim.stop();
+  });
 });

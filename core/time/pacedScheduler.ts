@@ -60,6 +60,17 @@ export class PacedScheduler extends BaseScheduler {
     return timer;
   }
 
+  /**
+   * The virtual time a wall time stands for (both µs; wall time on wallNow's scale,
+   * performance.now() by default): the pace's fixed offset. Virtual time runs at
+   * the wall clock's rate and trails it by at most one wake, so an event the page
+   * timestamped (performance.timeOrigin + event.timeStamp, mapped into this
+   * context's performance.now()) lands on the author's clock here.
+   */
+  virtualTimeAtWall(wall_us: number): number {
+    return wall_us - this.origin;
+  }
+
   /** The wall clock, on the virtual time's scale (µs). */
   private wallTime(): number {
     return this.wallNow() - this.origin;

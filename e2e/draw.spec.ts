@@ -1,0 +1,105 @@
+/**
+ * Live drawing on the simulated Blot plotter: a stroke drawn with the mouse on the
+ * Plotter tab's bed. The machine starts drawing it before the pointer lifts, and
+ * the simulated pen's ink (read back from the "Save as drawn" SVG download)
+ * matches the stroke within 0.3 mm (Hausdorff), with no ink on the travel.
+ */
+import { readFile } from 'node:fs/promises';
+import { expect, test, type Page } from '@playwright/test';
+import { hausdorff, pointDrawingDistance } from '../app/tools/plotter/geometry/hausdorff.ts';
+import { svgStrokes } from '../app/tools/plotter/svg/strokesSvg.ts';
+import { openWorkbench, screenshot } from './support/workbench.ts';
+
+/** The bed view's mapping from machine mm to page px (BedView publishes it on its canvas). */
+async function bedMapping(page: Page): Promise<(x: number, y: number) => [number, number]> {
+  const bed = page.getByTestId('plotter-bed');
+  const box = (await bed.boundingBox())!;
+  const attr = async (name: string) => Number(await bed.getAttribute(name));
+  const [scale, ox, oy, minX, minY] = [await attr('data-scale'), await attr('data-ox'), await attr('data-oy'), await attr('data-min-x'), await attr('data-min-y')];
+  return (x, y) => [box.x + ox + (x - minX) * scale, box.y + oy + (y - minY) * scale];
+}
+
+async function toolAt(page: Page): Promise<[number, number]> {
+  const s = page.getByTestId('plotter-status');
+  return [Number(await s.getAttribute('data-tool-x')), Number(await s.getAttribute('data-tool-y'))];
+}
+
+test('a stroke drawn with the mouse: the machine follows before the pointer lifts, and its ink matches the stroke', async ({ page }) => {
+  // 120 real mouse moves, each waiting for a frame: slow on a busy machine.
+  test.setTimeout(150_000);
+  await openWorkbench(page);
+  await page.getByTestId('machine-menu').click();
+  await page.getByTestId('preset-blotPlotter').click();
+  await expect(page.locator('[data-testid=log-entry][data-code=SIM]').last()).toContainText('blotPlotter');
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await page.getByTestId('tab-plotter').click();
+  await expect(page.getByTestId('plotter-pen')).toContainText('pen');
+  const toPx = await bedMapping(page);
+
+  // An S of two arcs (radius 15 mm), drawn at about 40 mm/s: 120 pointer moves ~16 ms apart.
+  const stroke: Array<[number, number]> = [];
+  for (let k = 0; k <= 120; k++) {
+    const u = k / 120;
+    const a = u < 0.5 ? Math.PI * (1 - 2 * u) : Math.PI * (2 * u - 1) + Math.PI;
+    const [cx, cy] = u < 0.5 ? [45, 60] : [75, 60];
+    stroke.push([cx + 15 * Math.cos(a), cy - 15 * Math.sin(a) * (u < 0.5 ? 1 : -1)]);
+  }
+  const start = toPx(...stroke[0]);
+  await page.mouse.move(start[0], start[1]);
+  await page.mouse.down();
+  let drawingFrom = 0;
+  for (let k = 1; k < stroke.length; k++) {
+    const [x, y] = toPx(...stroke[k]);
+    await page.mouse.move(x, y);
+    await page.waitForTimeout(12);
+    if (k === 80) await screenshot(page, '20-plotter-draw-mid-stroke');
+    if (k % 10 === 0) {
+      // Drawing: the tool is on the stroke, past its first 5 mm.
+      const [tx, ty] = await toolAt(page);
+      const onStroke = pointDrawingDistance(tx, ty, [stroke.flat()]) < 1;
+      if (onStroke && Math.hypot(tx - stroke[0][0], ty - stroke[0][1]) > 5 && drawingFrom === 0) drawingFrom = k;
+    }
+  }
+  const behindAtLift = Number(await page.getByTestId('plotter-status').getAttribute('data-behind-mm'));
+  await page.mouse.up();
+  // The machine was drawing the stroke while the pointer still had most of it to go.
+  expect(drawingFrom, 'the pointer move by which the machine was drawing the stroke').toBeGreaterThan(0);
+  expect(drawingFrom).toBeLessThanOrEqual(60);
+  console.log(`[draw] the machine was drawing the stroke by pointer move ${drawingFrom} of ${stroke.length - 1}; ${behindAtLift.toFixed(1)} mm behind at the lift`);
+
+  // Everything drawn: the plotter lets the machine go.
+  await expect(page.getByTestId('plotter-status')).toHaveAttribute('data-active', 'false', { timeout: 30_000 });
+  const download = page.waitForEvent('download');
+  await page.getByTestId('plotter-save-drawn').click();
+  const svg = await readFile(await (await download).path(), 'utf8');
+  expect(svg).toMatch(/width="125mm" height="125mm" viewBox="0 0 125 125"/);
+  const ink = svgStrokes(svg);
+  // One pen-down stroke: no ink on the travel to it.
+  expect(ink).toHaveLength(1);
+  const error = hausdorff([stroke.flat()], ink);
+  console.log(`[draw] ink vs stroke: Hausdorff ${error.toFixed(3)} mm over ${ink[0].length / 2} ink points`);
+  expect(error).toBeLessThanOrEqual(0.3);
+  await expect(page.locator('[data-testid=log-entry][data-code=DEVICE_REFUSED]')).toHaveCount(0);
+  await expect(page.locator('[data-testid=log-entry][data-code=DRAW_REFUSED]')).toHaveCount(0);
+
+  // Bad input: a stroke that leaves the bed (y > 125 mm). The part outside is refused
+  // with a note, the rest is drawn.
+  const outside: Array<[number, number]> = Array.from({ length: 26 }, (_, k) => [60, 110 + k]);
+  const o0 = toPx(...outside[0]);
+  await page.mouse.move(o0[0], o0[1]);
+  await page.mouse.down();
+  for (const p of outside.slice(1)) {
+    const [x, y] = toPx(...p);
+    await page.mouse.move(x, y);
+    await page.waitForTimeout(12);
+  }
+  await page.mouse.up();
+  await expect(page.locator('[data-testid=log-entry][data-code=DRAW_OUTSIDE]')).toContainText(/Stroke 2 left the soft limits .*: 10\.\d mm outside were not drawn, the rest was/);
+  await expect(page.getByTestId('plotter-status')).toHaveAttribute('data-active', 'false', { timeout: 30_000 });
+  const download2 = page.waitForEvent('download');
+  await page.getByTestId('plotter-save-drawn').click();
+  const ink2 = svgStrokes(await readFile(await (await download2).path(), 'utf8'));
+  expect(ink2).toHaveLength(2);
+  expect(hausdorff([[60, 110, 60, 125]], [ink2[1]])).toBeLessThanOrEqual(0.3);
+  await screenshot(page, '21-plotter-stroke-outside-the-bed');
+});
