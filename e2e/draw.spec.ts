@@ -5,7 +5,8 @@
  * matches the stroke within 0.3 mm (Hausdorff), with no ink on the travel.
  */
 import { readFile } from 'node:fs/promises';
-import { expect, test, type Page } from '@playwright/test';
+import type { Page } from '@playwright/test';
+import { expect, test } from './support/test.ts';
 import { hausdorff, pointDrawingDistance } from '../app/tools/plotter/geometry/hausdorff.ts';
 import { svgStrokes } from '../app/tools/plotter/svg/strokesSvg.ts';
 import { openWorkbench, screenshot } from './support/workbench.ts';

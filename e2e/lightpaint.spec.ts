@@ -5,7 +5,8 @@
  * columns placed within a quarter of the pixel pitch (exposureAnalysis.ts).
  */
 import { readFileSync } from 'node:fs';
-import { expect, test, type Page } from '@playwright/test';
+import type { Page } from '@playwright/test';
+import { expect, test } from './support/test.ts';
 import { analyseColumns, type ExposureChannel } from '../app/tools/lightpaint/exposureAnalysis.ts';
 import type { RasterLayout } from '../app/tools/lightpaint/raster.ts';
 import { openWorkbench, screenshot } from './support/workbench.ts';

@@ -9,7 +9,8 @@
  * - a malformed SVG is refused, naming the line, and the file before it stays.
  */
 import { readFileSync } from 'node:fs';
-import { expect, test, type Page } from '@playwright/test';
+import type { Page } from '@playwright/test';
+import { expect, test } from './support/test.ts';
 import { arrange, DEFAULT_ARRANGEMENT } from '../app/tools/plotter/files/arrange.ts';
 import { DEFAULT_CHORD_TOLERANCE_MM } from '../app/tools/plotter/files/flatten.ts';
 import { hausdorff } from '../app/tools/plotter/files/hausdorff.ts';
