@@ -17,6 +17,8 @@ export interface LinearMove {
   endPosition: number[] | Record<string, number>;
   /** mm/s cap on the speed along this move. Defaults to the machine limits. */
   maxVelocity?: number;
+  /** mm/s² cap on the acceleration along this move (below the machine limits, as Klipper's M204). */
+  maxAcceleration?: number;
   eventChannels?: MoveEvents;
 }
 
@@ -49,11 +51,13 @@ export class ValidatedMove {
   readonly end: number[];
   readonly maxVelocity: number;
   readonly events: ResolvedEventSpec[];
+  readonly maxAcceleration: number;
 
-  constructor(end: number[], maxVelocity: number, events: ResolvedEventSpec[]) {
+  constructor(end: number[], maxVelocity: number, events: ResolvedEventSpec[], maxAcceleration = Infinity) {
     this.end = end;
     this.maxVelocity = maxVelocity;
     this.events = events;
+    this.maxAcceleration = maxAcceleration;
   }
 }
 
@@ -119,7 +123,12 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
     maxVelocity = finite('maxVelocity', move.maxVelocity);
     if (maxVelocity <= 0) throw new MaxlError('MOVE_INVALID', 'must be positive (mm/s)', 'maxVelocity');
   }
-  return new ValidatedMove(end, maxVelocity, resolveMoveEvents(move.eventChannels, config.eventChannels));
+  let maxAcceleration = Infinity;
+  if (move.maxAcceleration !== undefined) {
+    maxAcceleration = finite('maxAcceleration', move.maxAcceleration);
+    if (maxAcceleration <= 0) throw new MaxlError('MOVE_INVALID', 'must be positive (mm/s²)', 'maxAcceleration');
+  }
+  return new ValidatedMove(end, maxVelocity, resolveMoveEvents(move.eventChannels, config.eventChannels), maxAcceleration);
 }
 
 export function distance(a: readonly number[], b: readonly number[]): number {
@@ -180,7 +189,7 @@ export function segmentsForMove(
   const limits = config.limits;
   const speed = Math.min(move.maxVelocity, projectLimit(limits.maxSpeed, limits.axisMaxSpeed, unit));
   const moveCruise2 = speed * speed;
-  const accel = projectLimit(limits.maxAccel, limits.axisMaxAccel, unit);
+  const accel = Math.min(move.maxAcceleration, projectLimit(limits.maxAccel, limits.axisMaxAccel, unit));
 
   // Pieces of the move: one, unless a nonlinear transform needs more.
   const fractions = hasNonlinearTransform(config) ? subdivisionFractions(config.transforms, p0, move.end) : WHOLE;
