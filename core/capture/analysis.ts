@@ -12,7 +12,7 @@
  * and RMS leave them out.
  */
 import { crossCorrelationLag, rmsDifference, type LagEstimate } from './lag.ts';
-import { amplitudeSpectrum, spectrumPeak, type Spectrum, type SpectrumPeak } from './spectrum.ts';
+import { amplitudeSpectrum, smoothSpectrum, spectrumPeak, type Spectrum, type SpectrumPeak } from './spectrum.ts';
 
 export interface AnalysisInput {
   /** author µs of each sample, ascending */
@@ -28,6 +28,8 @@ export interface AnalysisInput {
   fMax_hz?: number;
   /** the cross-correlation's search range (default ±100 ms) */
   maxLag_s?: number;
+  /** the spectrum's smoothing, ± Hz (default 0.3; spectrum.ts) */
+  smoothing_hz?: number;
 }
 
 export interface CaptureAnalysis {
@@ -38,7 +40,9 @@ export interface CaptureAnalysis {
   lag: LagEstimate | null;
   /** √(mean (measured − planned)²) at the grid points, mm/s² (no shift applied) */
   rmsError: number;
+  /** the measured acceleration's amplitude spectrum, smoothed (spectrum.ts) */
   spectrum: Spectrum;
+  /** its largest peak in the band, refined */
   peak: SpectrumPeak | null;
 }
 
@@ -91,7 +95,7 @@ export function analyseCapture(input: AnalysisInput): CaptureAnalysis {
   for (let j = 0; j < g.measured.length; j++) if (validMask[j]) ((mean += g.measured[j]), n++);
   mean /= n;
   const filled = g.measured.map((v, j) => (validMask[j] ? v : mean));
-  const spectrum = amplitudeSpectrum(filled, rate);
+  const spectrum = smoothSpectrum(amplitudeSpectrum(filled, rate), input.smoothing_hz ?? 0.3);
   return {
     samples: input.times_us.length,
     samplePeriod_s: period_s,

@@ -4,7 +4,7 @@
 import { describe, expect, it } from 'vitest';
 import { analyseCapture, resampleOnGrid } from './analysis.ts';
 import { crossCorrelationLag, rmsDifference } from './lag.ts';
-import { amplitudeSpectrum, fft, spectrumPeak } from './spectrum.ts';
+import { amplitudeSpectrum, fft, smoothSpectrum, spectrumPeak } from './spectrum.ts';
 import { seededRandom, gaussian } from '../sim/random.ts';
 
 describe('fft', () => {
@@ -66,6 +66,22 @@ describe('spectrum peak', () => {
     const peak = spectrumPeak(amplitudeSpectrum(x, fs), 5, 50)!;
     expect(Math.abs(peak.frequency_hz - wd / (2 * Math.PI))).toBeLessThan(0.5);
     expect(Math.abs(peak.frequency_hz - 28)).toBeLessThan(1e-3);
+  });
+
+  it("smoothing keeps a tone's peak where it was, and conserves power", () => {
+    const fs = 100;
+    const x = Array.from({ length: 3000 }, (_, n) => Math.sin(2 * Math.PI * 27.9 * (n / fs)));
+    const raw = amplitudeSpectrum(x, fs);
+    const smooth = smoothSpectrum(raw, 0.3);
+    expect(Math.abs(spectrumPeak(smooth, 5, 50)!.frequency_hz - 27.9)).toBeLessThan(0.02); // 0.07 %
+    // Power is conserved by a moving mean (away from the ends).
+    const power = (a: Float64Array) => a.reduce((s, v) => s + v * v, 0);
+    expect(power(smooth.amplitude) / power(raw.amplitude)).toBeCloseTo(1, 3);
+    // A spike one bin wide is spread over the window: its top falls by √(window bins).
+    const spike = { ...raw, amplitude: new Float64Array(raw.amplitude.length) };
+    spike.amplitude[1000] = 1;
+    const bins = 2 * Math.round(0.3 / raw.binHz) + 1;
+    expect(smoothSpectrum(spike, 0.3).amplitude[1000]).toBeCloseTo(1 / Math.sqrt(bins), 12);
   });
 
   it('says when there is nothing to look at', () => {
