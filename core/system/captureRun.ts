@@ -25,6 +25,11 @@ import { analyseCapture, type CaptureAnalysis } from '../capture/analysis.ts';
 import { limitsAlong, planTestMotion, type TestMotion } from '../capture/testMotions.ts';
 import type { SampleGap, SensorCapture } from '../capture/sensorCapture.ts';
 import type { SimulatedMachineOptions } from '../sim/machine.ts';
+import type { SpringParameters } from '../sim/plant/springResponse.ts';
+
+function isSpring(s: SpringParameters | Record<string, SpringParameters>): s is SpringParameters {
+  return typeof (s as SpringParameters).naturalFrequency_hz === 'number';
+}
 import { runJob, startMachine, type Bench } from './harness.ts';
 
 const STANDARD_GRAVITY = 9.80665;
@@ -144,8 +149,8 @@ export async function runCaptureOnAccelRig(
     fMin_hz: planned.band_hz[0],
     fMax_hz: Math.min(planned.band_hz[1], 50),
   });
-  const spring = preset.plant.spring!;
-  const p = 'naturalFrequency_hz' in spring ? spring : Object.values(spring)[0];
+  const spring = preset.plant.spring;
+  const p: SpringParameters = isSpring(spring) ? spring : spring[motion.axis];
   const stamps = checkStamps(b, capture, firstSample, last);
   return {
     bench: b,
