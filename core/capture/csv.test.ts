@@ -95,3 +95,21 @@ describe('capture CSV', () => {
     expect(() => captureToCsv(captureWithGap(), { sample: plan, motionAxes: ['x'], channelNames: ['only one'] })).toThrow(/2 channels but 1 names/);
   });
 });
+
+describe('the plan horizon', () => {
+  it('the history says where its plan begins once it dropped records, and the CSV leaves those cells empty', async () => {
+    const { createMAXL } = await import('../index.ts');
+    const maxl = createMAXL({ motionAxes: ['x'], limits: { maxVelocity: 100, maxAcceleration: 1000, junctionDeviation: 0.05 } }, { historyLimit: 3 });
+    const q = maxl.queue;
+    for (const x of [10, 0, 10, 0, 10]) q.append({ endPosition: [x] });
+    const sent = [];
+    for (let k = 0; k < 3; k++) sent.push(q.transmitNext(0)!);
+    expect(maxl.history.horizon_us).toBe(-Infinity);
+    sent.push(q.transmitNext(0)!, q.transmitNext(0)!);
+    expect(maxl.history.horizon_us).toBe(sent[2].startTime_us);
+    expect(maxl.history.pushed).toBe(5);
+    const rows = csvParseRows(captureToCsv(captureWithGap(), { sample: (t, k) => (k < 3 ? null : plan(t)), motionAxes: ['x'] }));
+    expect(rows[1].slice(9)).toEqual(['', '', '', '', '']);
+    expect(rows[4].slice(9).every((c) => c !== '')).toBe(true);
+  });
+});

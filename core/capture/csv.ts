@@ -19,18 +19,34 @@
  */
 import type { TrajectorySample } from '../trajectory/tracks.ts';
 import { formatSafeCsv, type CsvCell } from './csvSafe.ts';
-import type { SensorCapture } from './sensorCapture.ts';
+import type { SampleGap } from './sampleGaps.ts';
+
+/** A capture's columns (a SensorCapture, or a saved copy of one). */
+export interface CaptureColumns {
+  readonly reader: string;
+  readonly channels: number;
+  readonly gaps: readonly SampleGap[];
+  timeColumn(): ArrayLike<number>;
+  deviceTimeColumn(): ArrayLike<number>;
+  batchColumn(): ArrayLike<number>;
+  indexColumn(): ArrayLike<number>;
+  sequenceColumn(): ArrayLike<number>;
+  channel(c: number): ArrayLike<number>;
+}
 
 export interface CsvOptions {
-  /** the trajectory, read at an author time */
-  sample(t_us: number): TrajectorySample;
+  /**
+   * The trajectory at sample k's author time t_us; null where the plan is not known
+   * (before the as-planned history's horizon): those cells are left empty, never guessed.
+   */
+  sample(t_us: number, k: number): TrajectorySample | null;
   motionAxes: readonly string[];
   /** names of the capture's channels, e.g. ['ax', 'ay', 'az'] (default: reader name and index) */
   channelNames?: readonly string[];
 }
 
 /** The CSV's column names, in order. */
-export function captureCsvColumns(capture: Pick<SensorCapture, 'reader' | 'channels'>, options: Omit<CsvOptions, 'sample'>): string[] {
+export function captureCsvColumns(capture: Pick<CaptureColumns, 'reader' | 'channels'>, options: Omit<CsvOptions, 'sample'>): string[] {
   return [
     't_s',
     'author_us',
@@ -46,12 +62,12 @@ export function captureCsvColumns(capture: Pick<SensorCapture, 'reader' | 'chann
   ];
 }
 
-function channelNamesOf(capture: Pick<SensorCapture, 'reader' | 'channels'>, names?: readonly string[]): string[] {
+function channelNamesOf(capture: Pick<CaptureColumns, 'reader' | 'channels'>, names?: readonly string[]): string[] {
   if (names && names.length !== capture.channels) throw new RangeError(`the capture has ${capture.channels} channels but ${names.length} names were given`);
   return names ? [...names] : Array.from({ length: capture.channels }, (_, c) => `${capture.reader}${c}`);
 }
 
-export function captureToCsv(capture: SensorCapture, options: CsvOptions): string {
+export function captureToCsv(capture: CaptureColumns, options: CsvOptions): string {
   const times = capture.timeColumn();
   const device = capture.deviceTimeColumn();
   const batch = capture.batchColumn();
@@ -63,11 +79,11 @@ export function captureToCsv(capture: SensorCapture, options: CsvOptions): strin
   const rows: CsvCell[][] = [];
   for (let k = 0; k < times.length; k++) {
     const t = times[k];
-    const plan = options.sample(t);
+    const plan = options.sample(t, k);
     const row: CsvCell[] = [(t - t0) / 1e6, t, device[k], batch[k], index[k], seq[k], lostBefore.get(k) ?? 0];
     for (const values of channels) row.push(values[k]);
-    for (let i = 0; i < options.motionAxes.length; i++) row.push(plan.position[i], plan.velocity[i], plan.acceleration[i]);
-    row.push(plan.speed, plan.pathAcceleration);
+    for (let i = 0; i < options.motionAxes.length; i++) row.push(plan?.position[i], plan?.velocity[i], plan?.acceleration[i]);
+    row.push(plan?.speed, plan?.pathAcceleration);
     rows.push(row);
   }
   return formatSafeCsv(captureCsvColumns(capture, options), rows);
