@@ -9,6 +9,7 @@
  * The main thread asks for a snapshot from requestAnimationFrame and asks again only
  * once the last one arrived, so snapshots never queue up and never outpace frames.
  */
+import type { CaptureCommand, CaptureEvent } from '../tools/capture/protocol.ts';
 import type { MaxlConfig, TransformConfig } from '../../core/index.ts';
 
 // ---------------------------------------------------------------------------
@@ -203,9 +204,9 @@ export interface Snapshot {
 // The tools (app/tools/<name>/protocol.ts): each command and event carries `tool`.
 
 /** Every tool's commands. */
-export type ToolCommand = never;
+export type ToolCommand = CaptureCommand;
 /** Every tool's events. */
-export type ToolEvent = never;
+export type ToolEvent = CaptureEvent;
 
 // ---------------------------------------------------------------------------
 // main → worker
