@@ -2,13 +2,8 @@
  * A capture on the simulated accelerometer rig, in virtual time, judged against the
  * simulator's ground truth. Used by the capture system test and `npm run bench -- capture`.
  *
- * Ground truth of a sample's instant: the BNO055 model (core/sim/plant/bno055.ts) makes
- * sample n as the mean specific force over [n·P − P, n·P] (P its output period) and holds
- * it until the next; it records every sample it makes (recordSamples). The instant a
- * reading represents is the centre of that window, n·P − P/2. Each captured sample is
- * matched to the chip sample with the same register values (x, y, z to the LSB, in
- * order), and its stamp (author µs, from the board's stamp through the clock model)
- * compared with that instant.
+ * Ground truth of a sample's instant: the centre of the BNO055 model's averaging window
+ * for the chip sample it is (core/sim/plant/bno055Truth.ts).
  *
  * The plant's resonance: the tool hangs on the belt as x'' = ω²(u − x) − 2ζω x'
  * (springResponse.ts), so from the carriage's acceleration ü (what the plan commands) to
@@ -31,65 +26,17 @@ function isSpring(s: SpringParameters | Record<string, SpringParameters>): s is 
   return typeof (s as SpringParameters).naturalFrequency_hz === 'number';
 }
 import { runJob, startMachine, type Bench } from './harness.ts';
+import { resonancePeak_hz, stampTruth, type StampTruth } from '../sim/plant/bno055Truth.ts';
 
-const STANDARD_GRAVITY = 9.80665;
+export { resonancePeak_hz } from '../sim/plant/bno055Truth.ts';
 
-export function resonancePeak_hz(naturalFrequency_hz: number, damping: number): number {
-  return naturalFrequency_hz * Math.sqrt(1 - 2 * damping * damping);
-}
-
-export interface StampCheck {
-  matched: number;
-  unmatched: number;
-  /** the chip's samples (one per read by the board) from the one matched first to the one matched last */
-  chipSamples: number;
-  /** worst |stamp − window centre|, µs */
-  worst_us: number;
-  mean_us: number;
-}
+export type StampCheck = StampTruth;
 
 /** Compares every captured sample from index `from` up to `to` (exclusive) with the chip's own record. */
 export function checkStamps(b: Bench, capture: SensorCapture, from = 0, to = capture.size): StampCheck {
   const chip = b.sim.plant.accelerometer;
   if (!chip) throw new Error('the machine has no accelerometer');
-  const P = chip.samplePeriod_us;
-  const taken = chip.samplesTaken;
-  const raw = (v: number) => Math.round(v * 100) * 10; // m/s² → register LSB → mm/s², as the example converts
-  const times = capture.timeColumn();
-  const channels = [0, 1, 2].map((c) => capture.channel(c));
-  // The chip's first sample that could be the capture's first: a few periods before its stamp.
-  let j = 0;
-  if (from < times.length) while (j < taken.length && taken[j].t_us < times[from] - 50_000) j++;
-  let matched = 0;
-  let unmatched = 0;
-  let firstFound = -1;
-  let lastFound = -1;
-  let worst = 0;
-  let sum = 0;
-  const range = chip.range_g * STANDARD_GRAVITY;
-  const clip = (v: number) => Math.max(-range, Math.min(range, v));
-  for (let k = from; k < Math.min(to, times.length); k++) {
-    let found = -1;
-    for (let s = j; s < Math.min(taken.length, j + 50); s++) {
-      const a = taken[s].accel;
-      if (raw(clip(a[0])) === channels[0][k] && raw(clip(a[1])) === channels[1][k] && raw(clip(a[2])) === channels[2][k]) {
-        found = s;
-        break;
-      }
-    }
-    if (found < 0) {
-      unmatched++;
-      continue;
-    }
-    j = found + 1;
-    if (firstFound < 0) firstFound = found;
-    lastFound = found;
-    const error = times[k] - (taken[found].t_us - P / 2);
-    worst = Math.max(worst, Math.abs(error));
-    sum += error;
-    matched++;
-  }
-  return { matched, unmatched, chipSamples: firstFound < 0 ? 0 : lastFound - firstFound + 1, worst_us: worst, mean_us: matched > 0 ? sum / matched : NaN };
+  return stampTruth(chip, capture.timeColumn(), [0, 1, 2].map((c) => capture.channel(c)), from, to);
 }
 
 export interface CaptureRunResult {

@@ -8,7 +8,10 @@ import type { Maxl } from '../../../core/index.ts';
 import { analyseCapture } from '../../../core/capture/analysis.ts';
 import type { SensorCapture } from '../../../core/capture/sensorCapture.ts';
 import type { PlannedMotion, TestMotion } from '../../../core/capture/testMotions.ts';
-import { PLAN_STEP_US, type CaptureAnalysisView, type CaptureRecord, type PlannedSegment, type SensorTrace } from './protocol.ts';
+import type { Bno055 } from '../../../core/sim/plant/bno055.ts';
+import { resonancePeak_hz, stampTruth } from '../../../core/sim/plant/bno055Truth.ts';
+import type { SpringParameters } from '../../../core/sim/plant/springResponse.ts';
+import { PLAN_STEP_US, type CaptureAnalysisView, type CaptureRecord, type PlannedSegment, type SensorTrace, type SimulatorTruth } from './protocol.ts';
 import { decimateMax } from './decimate.ts';
 
 export interface RecordInput {
@@ -25,6 +28,8 @@ export interface RecordInput {
   firstIndex: ReadonlyMap<string, number>;
   cutShort: string | null;
   warnings: string[];
+  /** on a simulated machine: its accelerometer (recording its samples), the board reading it, and the belt spring */
+  truth?: { chip: Bno055; device: string; spring: SpringParameters } | null;
 }
 
 /** Points of the spectrum kept for the plot. */
@@ -76,6 +81,25 @@ export function buildRecord(input: RecordInput): CaptureRecord {
     segments,
     sensors,
     analysis: analyse(maxl, sensors, input.motion, input.planned),
+    simulatorTruth: truthOf(sensors, input.truth ?? null),
+  };
+}
+
+function truthOf(sensors: SensorTrace[], truth: RecordInput['truth'] | null): SimulatorTruth | null {
+  if (!truth || !truth.chip.record) return null;
+  const trace = sensors.find((s) => s.device === truth.device && s.values.length === 3);
+  if (!trace) return null;
+  const t = stampTruth(truth.chip, trace.author_us, trace.values);
+  return {
+    device: truth.device,
+    stampErrorWorst_us: t.worst_us,
+    stampErrorMean_us: t.mean_us,
+    matched: t.matched,
+    unmatched: t.unmatched,
+    chipSamples: t.chipSamples,
+    naturalFrequency_hz: truth.spring.naturalFrequency_hz,
+    damping: truth.spring.damping,
+    truePeak_hz: resonancePeak_hz(truth.spring.naturalFrequency_hz, truth.spring.damping),
   };
 }
 

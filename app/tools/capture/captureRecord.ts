@@ -69,6 +69,8 @@ export function recordSidecar(record: CaptureRecord, sensor = 0): Record<string,
       ? { axis: a.axis, channel: a.channel, lag_ms: a.lag_ms, correlation: a.correlation, rms_mm_s2: a.rms_mm_s2, peak_hz: a.peak_hz, band_hz: a.band_hz, sampleRate_hz: a.sampleRate_hz }
       : null,
     window_us: [record.start_us, record.end_us],
+    // Only on a simulated machine: its ground truth, to check the stamps and the peak by.
+    simulatorTruth: record.simulatorTruth,
     // The as-planned segments over the capture (core/trajectory/history.ts records): the
     // planned columns are these evaluated at each sample's author_us.
     planSegments: record.segments,

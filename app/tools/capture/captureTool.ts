@@ -13,7 +13,8 @@
 import type { Maxl } from '../../../core/index.ts';
 import { limitsAlong, planTestMotion, TestMotionError, type PlannedMotion, type TestMotion } from '../../../core/capture/testMotions.ts';
 import type { ToolContext, WorkbenchTool } from '../../worker/toolContext.ts';
-import { buildRecord } from './buildRecord.ts';
+import type { SpringParameters } from '../../../core/sim/plant/springResponse.ts';
+import { buildRecord, type RecordInput } from './buildRecord.ts';
 import { recordTransferables, type CaptureCommand, type CaptureEvent } from './protocol.ts';
 
 const OWNER = 'capture';
@@ -154,6 +155,7 @@ export class CaptureTool implements WorkbenchTool<CaptureCommand> {
       firstIndex: run.firstIndex,
       cutShort: run.cutShort,
       warnings: [],
+      truth: this.simulatorTruth(run.motion.axis),
     });
     const samples = record.sensors.reduce((n, s) => n + s.author_us.length, 0);
     const lost = record.sensors.reduce((n, s) => n + s.gaps.reduce((m, g) => m + g.samples, 0), 0);
@@ -164,6 +166,17 @@ export class CaptureTool implements WorkbenchTool<CaptureCommand> {
       `Capture ${run.cutShort ? `cut short (${run.cutShort})` : 'done'}: ${samples} samples${lost > 0 ? `, ${lost} lost (shown as gaps)` : ''}${peak}.`,
     );
     this.post({ tool: 'capture', type: 'capture-done', record }, recordTransferables(record));
+  }
+
+  /** The simulated machine's accelerometer and belt, for the record's ground truth (null on real boards). */
+  private simulatorTruth(axis: string): RecordInput['truth'] {
+    const sim = this.ctx.sim;
+    const chip = sim?.plant.accelerometer;
+    const plant = sim?.preset.plant;
+    if (!sim || !chip || !plant?.accelerometer) return null;
+    const spring = plant.spring;
+    const params = typeof (spring as SpringParameters).naturalFrequency_hz === 'number' ? (spring as SpringParameters) : (spring as Record<string, SpringParameters>)[axis];
+    return params ? { chip, device: plant.accelerometer.device, spring: params } : null;
   }
 
   private cancel(): void {

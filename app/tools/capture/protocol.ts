@@ -105,6 +105,23 @@ export interface CaptureRecord {
   segments: PlannedSegment[];
   sensors: SensorTrace[];
   analysis: CaptureAnalysisView | null;
+  /** On a simulated machine with an accelerometer: the simulator's ground truth (core/sim/plant/bno055Truth.ts). */
+  simulatorTruth: SimulatorTruth | null;
+}
+
+export interface SimulatorTruth {
+  device: string;
+  /** worst and mean |stamp − centre of the chip's averaging window|, µs, over the samples matched */
+  stampErrorWorst_us: number;
+  stampErrorMean_us: number;
+  matched: number;
+  unmatched: number;
+  /** samples the board read from the chip over the capture */
+  chipSamples: number;
+  /** the plant's belt spring, and the peak of its response f₀·√(1 − 2ζ²) */
+  naturalFrequency_hz: number;
+  damping: number;
+  truePeak_hz: number;
 }
 
 /** The planned curve's resolution in a record, µs. */
