@@ -70,7 +70,7 @@ export function buildRecord(input: RecordInput): CaptureRecord {
     motion: input.motion,
     machine: input.machine,
     config: input.config,
-    firmware: maxl.devices().map((d) => ({ device: d.label, firmware: d.firmware })),
+    firmware: maxl.devices().map((d) => ({ device: d.name, link: d.label, firmware: d.firmware })),
     syncError_us: maxl.estimate().syncError_us,
     start_us,
     end_us,
@@ -128,8 +128,10 @@ function traceOf(maxl: Maxl, capture: SensorCapture, first: number, end_us: numb
     planned.speed[k] = s ? s.speed : NaN;
     planned.pathAcceleration[k] = s ? s.pathAcceleration : NaN;
   }
+  // The capture is keyed by the session's label (a port name, or "sim:…"); the record keeps the device's own name.
+  const device = maxl.devices().find((d) => d.label === capture.device)?.name ?? capture.device;
   return {
-    device: capture.device,
+    device,
     reader: capture.reader,
     channelNames: channelNames(capture),
     author_us,

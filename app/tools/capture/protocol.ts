@@ -91,7 +91,7 @@ export interface CaptureRecord {
   /** preset id, or "boards" */
   machine: string;
   config: Omit<MaxlConfig, 'transforms'>;
-  firmware: Array<{ device: string; firmware: string }>;
+  firmware: Array<{ device: string; link: string; firmware: string }>;
   /** the worst clock-sync error over the devices at the end, µs */
   syncError_us: number;
   start_us: number;
