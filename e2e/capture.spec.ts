@@ -7,12 +7,13 @@
  *    segments in the sidecar, evaluated here with the core's sampleTimeline) to 1e-9;
  *  - every stamp is within 0.5 ms of the simulator's truth, and the spectrum's peak,
  *    recomputed here from the CSV's measured column, within 1 % of the belt's resonance.
- * Screenshot: 20-capture-overlay (measured over planned acceleration and the spectrum).
+ * Screenshots: 20-capture-overlay (the Capture tab: measured over planned acceleration and
+ * the spectrum) and 21-capture-overlay-zoomed (the plot alone, zoomed in on the resonance).
  */
 import { readFile } from 'node:fs/promises';
 import { expect, test, type Page } from '@playwright/test';
 import { csvParse } from 'd3-dsv';
-import { openWorkbench, screenshot } from './support/workbench.ts';
+import { openWorkbench, screenshot, SCREENSHOTS } from './support/workbench.ts';
 import { sampleTimeline, type TimedSegment } from '../core/trajectory/tracks.ts';
 import { analyseCapture } from '../core/capture/analysis.ts';
 
@@ -51,6 +52,14 @@ test('a resonance sweep: the plot, and a CSV whose rows, plan, stamps and peak h
   await expect(page.getByTestId('capture-peak')).toBeVisible({ timeout: 60_000 });
   await expect(page.getByTestId('capture-item')).toHaveCount(1);
   await screenshot(page, '20-capture-overlay');
+  // Zoom in on the resonance (wheel over the plot, near 2.6 s of 5), read the cursor.
+  const plot = page.getByTestId('capture-plot');
+  const box = (await plot.boundingBox())!;
+  await page.mouse.move(box.x + box.width * 0.55, box.y + box.height / 2);
+  for (let k = 0; k < 8; k++) await page.mouse.wheel(0, -300);
+  await page.mouse.move(box.x + box.width * 0.5, box.y + box.height / 2);
+  await expect(page.getByTestId('capture-cursor')).toContainText(/t = \d+\.\d{4} s · planned ax: -?\d+ · measured accel_ax_mm_s2: -?\d+ mm\/s²/);
+  await plot.screenshot({ path: `${SCREENSHOTS}/21-capture-overlay-zoomed.png` });
 
   const sidecar = JSON.parse(await downloadText(page, 'capture-sidecar')) as Sidecar;
   const rows = csvParse(await downloadText(page, 'capture-csv'));
