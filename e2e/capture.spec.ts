@@ -124,4 +124,22 @@ test('a resonance sweep: the plot, and a CSV whose rows, plan, stamps and peak h
   expect(Math.abs(peak - truePeak) / truePeak).toBeLessThan(0.01);
   const shown = Number(await page.getByTestId('capture-peak').getAttribute('data-value'));
   expect(Math.abs(shown - peak)).toBeLessThan(1e-6);
+
+  // A second capture (growing strokes), overlaid to compare; both kept across a reload; one deleted.
+  await page.getByTestId('capture-kind').selectOption('growing');
+  await page.getByTestId('capture-stroke').fill('10');
+  await page.getByTestId('capture-grow-from').fill('20');
+  await page.getByTestId('capture-grow-to').fill('100');
+  await page.getByTestId('capture-steps').fill('3');
+  await page.getByTestId('capture-run').click();
+  await expect(page.getByTestId('capture-item')).toHaveCount(2, { timeout: 60_000 });
+  await page.getByTestId('capture-compare').nth(1).check();
+  await expect(page.getByTestId('capture-plot').locator('path[data-series]')).toHaveCount(4);
+  await expect(page.getByTestId('capture-spectrum')).toContainText('compare peak');
+  await page.reload();
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await page.getByTestId('tab-capture').click();
+  await expect(page.getByTestId('capture-item')).toHaveCount(2);
+  await page.getByTestId('capture-delete').first().click();
+  await expect(page.getByTestId('capture-item')).toHaveCount(1);
 });

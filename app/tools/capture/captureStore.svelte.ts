@@ -52,6 +52,7 @@ export class CaptureStore {
 
   async remove(id: string): Promise<void> {
     await deleteCapture(id);
+    this.captures = this.captures.filter((c) => c.id !== id);
     if (this.selectedId === id) this.selectedId = null;
     if (this.compareId === id) this.compareId = null;
     await this.reload();
