@@ -143,3 +143,35 @@ test('a resonance sweep: the plot, and a CSV whose rows, plan, stamps and peak h
   await page.getByTestId('capture-delete').first().click();
   await expect(page.getByTestId('capture-item')).toHaveCount(1);
 });
+
+test('a capture cut short by Cancel, then by STOP, keeps what it captured', async ({ page }) => {
+  test.setTimeout(120_000);
+  await openWorkbench(page);
+  await page.getByTestId('machine-menu').click();
+  await page.getByTestId('preset-accelRig').click();
+  await expect(page.getByTestId('machine-menu')).toContainText('accelRig');
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await page.getByTestId('tab-capture').click();
+  const items = page.getByTestId('capture-item');
+  const kept = await items.count();
+
+  // Cancel: the machine stops on the path and stays ready; the samples so far are kept.
+  await page.getByTestId('capture-from').fill('10');
+  await page.getByTestId('capture-to').fill('45');
+  await page.getByTestId('capture-rate').fill('1');
+  await page.getByTestId('capture-run').click();
+  await expect(page.getByTestId('capture-progress')).toContainText(/[1-9]\d* samples/);
+  await page.getByTestId('capture-cancel').click();
+  await expect(items).toHaveCount(kept + 1, { timeout: 20_000 });
+  await expect(items.first()).toContainText('cut short (cancelled)');
+  expect(Number(await page.getByTestId('capture-samples').getAttribute('data-value'))).toBeGreaterThan(20);
+  await expect(page.getByTestId('phase')).toHaveText('ready');
+
+  // STOP: every device halts; the capture is kept, marked.
+  await page.getByTestId('capture-run').click();
+  await expect(page.getByTestId('capture-progress')).toContainText(/[1-9]\d* samples/);
+  await page.keyboard.press('Escape');
+  await expect(items).toHaveCount(kept + 2, { timeout: 20_000 });
+  await expect(items.first()).toContainText('cut short (STOP was pressed)');
+  await expect(page.getByTestId('phase')).toHaveText('halted');
+});
