@@ -105,3 +105,22 @@ describe('sample gaps', () => {
     expect(capture.gaps).toHaveLength(3);
   });
 });
+
+describe('a device whose clock restarted', () => {
+  it('counts the gap by the author clock when the device time across it makes no sense', () => {
+    const capture = new SensorCapture('imu', 'accel', 1);
+    feed(capture, Array.from({ length: 20 }, (_, n) => n));
+    // The board rebooted: its batches start again at 0 and its clock near 0, 4 batches' time later.
+    const restart = 24 * PER_BATCH * PERIOD_US;
+    const gap = capture.add(
+      { type: 'SAMPLES', reader: 0, sampleSeq: 0, count: 1, t0: 12_345, samples: [{ dt: 0, values: [0] }] },
+      { toAuthor: () => restart } as unknown as ClockMap,
+      restart + 3000,
+    );
+    expect(gap?.kind).toBe('lost');
+    expect(gap?.restarted).toBe(true);
+    // 130 ms from the last sample kept (at 590 ms) to this one: 12 samples between, 4 batches of 3.
+    expect(gap?.samples).toBe(12);
+    expect(gap?.batches).toBe(4);
+  });
+});

@@ -49,6 +49,8 @@ export interface SampleGap {
   to_us: number;
   /** index in the capture of the first sample after the gap (= the capture's size for a duplicate) */
   index: number;
+  /** the batch numbers restarted (a reboot): `batches` is then the time's estimate, `samples` still counted by time */
+  restarted?: boolean;
 }
 
 const U16 = 0x10000;
@@ -110,16 +112,27 @@ export class SampleGapDetector {
       const k = Math.max(0, Math.round((bySamples / B - r) / U16));
       batches = r + k * U16;
     }
+    // Every batch holds a sample at least: more batches missing than samples is impossible,
+    // unless the numbering itself restarted (the board rebooted). Then the time decides.
+    const restarted = Number.isFinite(bySamples) && batches > bySamples;
+    if (restarted) batches = bySamples === 0 ? 0 : Math.max(1, Math.round(bySamples / B));
     const batch = this.lastBatch + batches + 1;
     if (batches === 0) return { batch, gap: null };
     const samples = Math.max(batches, Number.isFinite(bySamples) ? bySamples : batches);
-    return { batch, gap: { kind: 'lost', batches, samples, droppedSamples: 0, batch, from_us: this.lastSample_us, to_us: first } };
+    return { batch, gap: { kind: 'lost', batches, samples, droppedSamples: 0, batch, from_us: this.lastSample_us, to_us: first, restarted } };
   }
 
-  /** Device µs from the last sample kept to a sample at author `t_us` stamped `device`. */
+  /**
+   * Device µs from the last sample kept to a sample at author `t_us` stamped `device`.
+   * If that disagrees with the author's clock by more than 1 % (+ 5 ms), the device's
+   * clock restarted or jumped (a reboot) and cannot count the gap: the author's span is
+   * used instead, still right to the sample for gaps shorter than 50 periods × 1/1 %.
+   */
   private deviceSpan(t_us: number, device: number): number {
+    const author = t_us - this.lastSample_us;
     const d = (((device - this.lastDevice) % U32) + U32) % U32;
-    return d + U32 * Math.round((t_us - this.lastSample_us - d) / U32);
+    const span = d + U32 * Math.round((author - d) / U32);
+    return Math.abs(span - author) > 0.01 * author + 5000 ? author : span;
   }
 
   /**
