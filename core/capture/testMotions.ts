@@ -1,7 +1,7 @@
 /**
  * The capture tool's test motions, as plain MAXL moves along one axis.
  *
- * Resonance sweep (after Klipper's TEST_RESONANCES, its "vibration pulse" test): short
+ * Resonance sweep (after Klipper's TEST_RESONANCES, its vibration test generator): short
  * back-and-forth moves whose frequency rises steadily. One cycle at frequency f goes out
  * by d and back:
  *
@@ -12,14 +12,12 @@
  * peak speed a·T/4 and the stroke d = a·(T/4)² = a / (16 f²). Each move is a triangle
  * profile: a rest-to-rest move of length d capped at acceleration a (the move's
  * maxAcceleration) peaks at √(a·d) = a·T/4, and it ends at rest because the next move
- * reverses (the junction speed of a reversal is 0). Like
- * Klipper the amplitude grows with frequency, a = accelPerHz·f (capped at the machine's
- * limit), which keeps the stroke from vanishing at high f (d = accelPerHz / (16 f)), and
- * like Klipper the frequency rises by hzPerSecond·T per cycle, so the sweep spends equal
- * time at every frequency. Every cycle goes out on the same side and comes back to the
- * start at rest: Klipper alternates sides, which runs each return straight on into the
- * next stroke (no stop between, so the square wave loses its shape); here each
- * reversal is a full stop.
+ * reverses (the junction speed of a reversal is 0). As in Klipper the amplitude grows with
+ * frequency, a = accelPerHz·f (capped at the machine's limit; Klipper's default is 60),
+ * which keeps the stroke from vanishing at high f (d = accelPerHz / (16 f)), and the
+ * frequency rises by hzPerSecond·T per cycle (Klipper: by hz_per_sec per second, a half
+ * cycle at a time), so the sweep spends equal time at every frequency. (Recent Klipper also
+ * lays a slow back-and-forth "sweeping" motion over the vibrations; not done here.)
  *
  * Growing moves: strokes of a fixed length out and back along the axis, their speed (or
  * acceleration) stepping from `from` to `to` over `steps` strokes, the other limit left at
