@@ -61,6 +61,15 @@ test('a resonance sweep: the plot, and a CSV whose rows, plan, stamps and peak h
   await expect(page.getByTestId('capture-cursor')).toContainText(/t = \d+\.\d{4} s · planned ax: -?\d+ · measured accel_ax_mm_s2: -?\d+ mm\/s²/);
   await plot.screenshot({ path: `${SCREENSHOTS}/21-capture-overlay-zoomed.png` });
 
+  // The plot as SVG (standalone, both curves) and as PNG.
+  const svg = await downloadText(page, 'capture-svg');
+  expect(svg).toMatch(/^<svg[^>]*xmlns="http:\/\/www.w3.org\/2000\/svg"/);
+  expect(svg.match(/data-series="/g)).toHaveLength(2);
+  const [png] = await Promise.all([page.waitForEvent('download'), page.getByTestId('capture-png').click()]);
+  const pngBytes = await readFile(await png.path());
+  expect([...pngBytes.subarray(0, 8)]).toEqual([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]);
+  expect(pngBytes.readUInt32BE(16)).toBe(1440); // 720 × 2 px wide
+
   const sidecar = JSON.parse(await downloadText(page, 'capture-sidecar')) as Sidecar;
   const rows = csvParse(await downloadText(page, 'capture-csv'));
   const num = (r: Record<string, string | undefined>, c: string) => Number(r[c]);
