@@ -213,11 +213,17 @@ export class Maxl {
     return this.runtime?.captures ?? new Map();
   }
 
-  /** A capture as CSV, each sample joined with the planned position, velocity and acceleration at its time. */
+  /**
+   * A capture as CSV (capture/csv.ts), each sample joined with the planned position,
+   * velocity and acceleration at its time; cells that could read as formulas neutralised.
+   * Samples older than the as-planned history's horizon (historyLimit segments back) get
+   * empty planned cells rather than a guess.
+   */
   captureCsv(key: string, channelNames?: string[]): string {
     const capture = this.captures.get(key);
     if (!capture) throw new MaxlError('CONFIG_INVALID', `no capture "${key}" (captures: ${[...this.captures.keys()].join(', ') || 'none'})`, 'capture');
-    return captureToCsv(capture, { sample: (t) => this.sample(t), motionAxes: this.config.motionAxes, channelNames });
+    const horizon = this.history.horizon_us;
+    return captureToCsv(capture, { sample: (t) => (t < horizon ? null : this.sample(t)), motionAxes: this.config.motionAxes, channelNames });
   }
 
   /** µs of motion the streamer keeps ahead of the machine (2·RTT plus a margin). */

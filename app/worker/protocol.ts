@@ -9,6 +9,7 @@
  * The main thread asks for a snapshot from requestAnimationFrame and asks again only
  * once the last one arrived, so snapshots never queue up and never outpace frames.
  */
+import type { CaptureCommand, CaptureEvent } from '../tools/capture/protocol.ts';
 import type { MaxlConfig, TransformConfig } from '../../core/index.ts';
 import type { LightpaintCommand, LightpaintEvent } from '../tools/lightpaint/protocol.ts';
 import type { FileCommand, FileEvent } from '../tools/plotter/files/protocol.ts';
@@ -207,9 +208,9 @@ export interface Snapshot {
 // The tools (app/tools/<name>/protocol.ts): each command and event carries `tool`.
 
 /** Every tool's commands. */
-export type ToolCommand = PlotterCommand | FileCommand | LightpaintCommand;
+export type ToolCommand = PlotterCommand | FileCommand | LightpaintCommand | CaptureCommand;
 /** Every tool's events. */
-export type ToolEvent = PlotterEvent | FileEvent | LightpaintEvent;
+export type ToolEvent = PlotterEvent | FileEvent | LightpaintEvent | CaptureEvent;
 
 // ---------------------------------------------------------------------------
 // main → worker

@@ -376,6 +376,15 @@ export class Workbench {
         this.jog.reset();
         if (this.phase === 'ready') this.setPhase('not-ready', `${e.device}: ${e.reason ?? e.state}. The machine brakes to rest on the path. Check the cable and power, then press Re-arm.`);
       }
+    } else if (e.type === 'sampleGap') {
+      const g = e.gap;
+      this.log(
+        'warning',
+        g.kind === 'lost' ? 'SAMPLES_LOST' : 'SAMPLES_DUPLICATE',
+        g.kind === 'lost'
+          ? `${e.device}/${e.reader}: ${g.samples} samples lost (${g.batches} batches) between ${(g.from_us / 1e6).toFixed(3)} s and ${(g.to_us / 1e6).toFixed(3)} s`
+          : `${e.device}/${e.reader}: a duplicate batch (${g.droppedSamples} samples) was dropped`,
+      );
     } else if (e.type === 'stopped') {
       if (e.position) this.position = [...e.position];
       // A device braked to rest by itself (STOP sets 'halted' first): this author

@@ -1,45 +1,90 @@
 /**
- * CSV export of a capture (d3-dsv), each sample joined with the plan at its
- * author time: the planned position of every motion axis, the planned velocity
- * and acceleration vectors, and the path speed and acceleration. Times are in
- * seconds from the first sample; the absolute author time is kept as well.
+ * CSV export of a capture (d3-dsv, through csvSafe.ts so no cell reads as a formula):
+ * one row per sample received, joined with the plan at its author time.
+ *
+ *   t_s               seconds from the first sample (author clock)
+ *   author_us         the sample's author time, µs: its device stamp through the clock model
+ *   device_us         the device's own u32 µs stamp, as it came
+ *   batch             the SAMPLES batch it came in (the wire's u16 number, unwrapped)
+ *   index_in_batch    its place in that batch
+ *   sample_seq        samples the device took before it, lost ones included
+ *   lost_before       samples lost just before this one (0 but after a gap); so sample_seq
+ *                     rises by exactly 1 + lost_before from row to row
+ *   <channels>        the measured values
+ *   planned_<a>_mm, planned_v<a>_mm_s, planned_a<a>_mm_s2    per motion axis a
+ *   planned_speed_mm_s, planned_path_accel_mm_s2            along the path
+ *
+ * A lost sample is never interpolated or joined over: its row is absent, and the next
+ * row says how many went missing.
  */
-import { csvFormat } from 'd3-dsv';
 import type { TrajectorySample } from '../trajectory/tracks.ts';
-import type { SensorCapture } from './sensorCapture.ts';
+import { formatSafeCsv, type CsvCell } from './csvSafe.ts';
+import type { SampleGap } from './sampleGaps.ts';
+
+/** A capture's columns (a SensorCapture, or a saved copy of one). */
+export interface CaptureColumns {
+  readonly reader: string;
+  readonly channels: number;
+  readonly gaps: readonly SampleGap[];
+  timeColumn(): ArrayLike<number>;
+  deviceTimeColumn(): ArrayLike<number>;
+  batchColumn(): ArrayLike<number>;
+  indexColumn(): ArrayLike<number>;
+  sequenceColumn(): ArrayLike<number>;
+  channel(c: number): ArrayLike<number>;
+}
 
 export interface CsvOptions {
-  /** the trajectory, read at an author time */
-  sample(t_us: number): TrajectorySample;
+  /**
+   * The trajectory at sample k's author time t_us; null where the plan is not known
+   * (before the as-planned history's horizon): those cells are left empty, never guessed.
+   */
+  sample(t_us: number, k: number): TrajectorySample | null;
   motionAxes: readonly string[];
-  /** names of the capture's channels, e.g. ['ax', 'ay', 'az'] */
+  /** names of the capture's channels, e.g. ['ax', 'ay', 'az'] (default: reader name and index) */
   channelNames?: readonly string[];
 }
 
-export function captureToCsv(capture: SensorCapture, options: CsvOptions): string {
-  const times = capture.timeColumn();
-  const names = options.channelNames ?? Array.from({ length: capture.channels }, (_, c) => `${capture.reader}${c}`);
-  const t0 = times.length > 0 ? times[0] : 0;
-  const rows = Array.from(times, (t, k) => {
-    const plan = options.sample(t);
-    const row: Record<string, number> = { t_s: (t - t0) / 1e6, author_us: t };
-    names.forEach((name, c) => (row[name] = capture.channel(c)[k]));
-    options.motionAxes.forEach((axis, i) => {
-      row[`planned_${axis}_mm`] = plan.position[i];
-      row[`planned_v${axis}_mm_s`] = plan.velocity[i];
-      row[`planned_a${axis}_mm_s2`] = plan.acceleration[i];
-    });
-    row.planned_speed_mm_s = plan.speed;
-    row.planned_path_accel_mm_s2 = plan.pathAcceleration;
-    return row;
-  });
-  const columns = [
+/** The CSV's column names, in order. */
+export function captureCsvColumns(capture: Pick<CaptureColumns, 'reader' | 'channels'>, options: Omit<CsvOptions, 'sample'>): string[] {
+  return [
     't_s',
     'author_us',
-    ...names,
+    'device_us',
+    'batch',
+    'index_in_batch',
+    'sample_seq',
+    'lost_before',
+    ...channelNamesOf(capture, options.channelNames),
     ...options.motionAxes.flatMap((a) => [`planned_${a}_mm`, `planned_v${a}_mm_s`, `planned_a${a}_mm_s2`]),
     'planned_speed_mm_s',
     'planned_path_accel_mm_s2',
   ];
-  return csvFormat(rows, columns);
+}
+
+function channelNamesOf(capture: Pick<CaptureColumns, 'reader' | 'channels'>, names?: readonly string[]): string[] {
+  if (names && names.length !== capture.channels) throw new RangeError(`the capture has ${capture.channels} channels but ${names.length} names were given`);
+  return names ? [...names] : Array.from({ length: capture.channels }, (_, c) => `${capture.reader}${c}`);
+}
+
+export function captureToCsv(capture: CaptureColumns, options: CsvOptions): string {
+  const times = capture.timeColumn();
+  const device = capture.deviceTimeColumn();
+  const batch = capture.batchColumn();
+  const index = capture.indexColumn();
+  const seq = capture.sequenceColumn();
+  const channels = Array.from({ length: capture.channels }, (_, c) => capture.channel(c));
+  const lostBefore = new Map(capture.gaps.filter((g) => g.kind === 'lost').map((g) => [g.index, g.samples]));
+  const t0 = times.length > 0 ? times[0] : 0;
+  const rows: CsvCell[][] = [];
+  for (let k = 0; k < times.length; k++) {
+    const t = times[k];
+    const plan = options.sample(t, k);
+    const row: CsvCell[] = [(t - t0) / 1e6, t, device[k], batch[k], index[k], seq[k], lostBefore.get(k) ?? 0];
+    for (const values of channels) row.push(values[k]);
+    for (let i = 0; i < options.motionAxes.length; i++) row.push(plan?.position[i], plan?.velocity[i], plan?.acceleration[i]);
+    row.push(plan?.speed, plan?.pathAcceleration);
+    rows.push(row);
+  }
+  return formatSafeCsv(captureCsvColumns(capture, options), rows);
 }

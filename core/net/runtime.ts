@@ -17,7 +17,7 @@ import type { Segment } from '../trajectory/segment.ts';
 import type { TrajectorySample } from '../trajectory/tracks.ts';
 import type { ResolvedConfig } from '../config/types.ts';
 import { bindSubscriptions, type DevicePlan } from './bindings.ts';
-import { SensorCapture } from '../capture/sensorCapture.ts';
+import { SensorCapture, type SampleGap } from '../capture/sensorCapture.ts';
 import type { Link } from './link.ts';
 import type { MessageOf } from './messages.ts';
 import { DeviceState, nameOf, type DeviceStateName } from './protocol.ts';
@@ -58,6 +58,8 @@ export type RuntimeEvent =
   | { type: 'error'; error: MaxlError }
   | { type: 'stopped'; device: string; segmentId: number | null; sigma: number; position: number[] | null }
   | { type: 'samples'; device: string; samples: MessageOf<'SAMPLES'>; at_us: number }
+  /** Batches of a sensor reader lost (with the samples they held), or a duplicate batch dropped. */
+  | { type: 'sampleGap'; device: string; reader: string; gap: SampleGap }
   | { type: 'idle' };
 
 export interface RuntimeHost {
@@ -299,8 +301,9 @@ export class Runtime {
       capture = new SensorCapture(session.label, reader.name, reader.channels);
       this.captures.set(key, capture);
     }
-    capture.add(m, clock, at);
-    this.emit({ type: 'samples', device: session.label, samples: m, at_us: at });
+    const gap = capture.add(m, clock, at);
+    if (gap) this.emit({ type: 'sampleGap', device: session.label, reader: reader.name, gap });
+    if (gap?.kind !== 'duplicate') this.emit({ type: 'samples', device: session.label, samples: m, at_us: at });
   }
 
   private segmentForWireId(wireId: number): Segment | undefined {

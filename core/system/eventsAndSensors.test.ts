@@ -74,10 +74,12 @@ describe('sensor capture', () => {
     expect(worst).toBeLessThan(1000);
     // The CSV joins each sample with the plan at its time.
     const csv = b.maxl.captureCsv('accelerometer/accel', ['ax', 'ay', 'az']).split('\n');
-    expect(csv[0]).toBe('t_s,author_us,ax,ay,az,planned_x_mm,planned_vx_mm_s,planned_ax_mm_s2,planned_speed_mm_s,planned_path_accel_mm_s2');
+    expect(csv[0]).toBe(
+      't_s,author_us,device_us,batch,index_in_batch,sample_seq,lost_before,ax,ay,az,planned_x_mm,planned_vx_mm_s,planned_ax_mm_s2,planned_speed_mm_s,planned_path_accel_mm_s2',
+    );
     expect(csv.length).toBe(times.length + 1);
     const mid = csv[Math.floor(csv.length / 2)].split(',').map(Number);
-    expect(mid[5]).toBeCloseTo(b.maxl.sample(mid[1]).position[0], 6);
+    expect(mid[10]).toBeCloseTo(b.maxl.sample(mid[1]).position[0], 6);
     await b.sim.stop();
   }, 60_000);
 });

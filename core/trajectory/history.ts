@@ -77,6 +77,19 @@ export class TrajectoryHistory {
     this.data = new Float64Array(Math.min(this.capacity, 1024) * this.stride);
   }
 
+  /**
+   * Author µs before which the history no longer knows the plan: the start of the oldest
+   * record kept once older ones were dropped to make room; −∞ while nothing was dropped.
+   */
+  get horizon_us(): number {
+    return this.count > this.capacity ? this.startOf(0) : -Infinity;
+  }
+
+  /** Records pushed since the history was made (kept or dropped). */
+  get pushed(): number {
+    return this.count;
+  }
+
   /** Records held (at most `capacity`). */
   get size(): number {
     return Math.min(this.count, this.capacity);

@@ -24,6 +24,8 @@ export interface LinearMove {
   endPosition: number[] | Record<string, number>;
   /** mm/s cap on the speed along this move. Defaults to the machine limits. */
   maxVelocity?: number;
+  /** mm/s² cap on the acceleration along this move (below the machine limits, as Klipper's M204). */
+  maxAcceleration?: number;
   eventChannels?: MoveEvents;
 }
 
@@ -67,12 +69,15 @@ export class ValidatedMove {
   readonly events: ResolvedEventSpec[];
   /** s, for a dwell; null for a linear move. */
   readonly dwell_s: number | null;
+  /** mm/s², a cap on this move's acceleration (as Klipper's M204); Infinity for the machine's limits. */
+  readonly maxAcceleration: number;
 
-  constructor(end: number[], maxVelocity: number, events: ResolvedEventSpec[], dwell_s: number | null = null) {
+  constructor(end: number[], maxVelocity: number, events: ResolvedEventSpec[], dwell_s: number | null = null, maxAcceleration = Infinity) {
     this.end = end;
     this.maxVelocity = maxVelocity;
     this.events = events;
     this.dwell_s = dwell_s;
+    this.maxAcceleration = maxAcceleration;
   }
 }
 
@@ -180,12 +185,17 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
     maxVelocity = finite('maxVelocity', move.maxVelocity);
     if (!(maxVelocity >= MIN_SPEED)) throw new MaxlError('MOVE_INVALID', `must be at least ${MIN_SPEED} mm/s, got ${maxVelocity}`, 'maxVelocity');
   }
-  return new ValidatedMove(end, maxVelocity, resolveMoveEvents(move.eventChannels, config.eventChannels));
+  let maxAcceleration = Infinity;
+  if (move.maxAcceleration !== undefined) {
+    maxAcceleration = finite('maxAcceleration', move.maxAcceleration);
+    if (maxAcceleration <= 0) throw new MaxlError('MOVE_INVALID', 'must be positive (mm/s²)', 'maxAcceleration');
+  }
+  return new ValidatedMove(end, maxVelocity, resolveMoveEvents(move.eventChannels, config.eventChannels), null, maxAcceleration);
 }
 
 /** A dwell holds wherever the path is: it takes no end position and no speed, and lasts 0 to MAX_DWELL_S s. */
 function validateDwell(config: ResolvedConfig, move: DwellMove, from: readonly number[]): ValidatedMove {
-  for (const field of ['endPosition', 'maxVelocity'] as const) {
+  for (const field of ['endPosition', 'maxVelocity', 'maxAcceleration'] as const) {
     if ((move as Partial<LinearMove>)[field] !== undefined) {
       throw new MaxlError('MOVE_INVALID', `a dwell holds its position at rest: it takes no ${field} (give a linear move, then the dwell)`, field);
     }
@@ -289,7 +299,7 @@ export function segmentsForMove(
   const limits = config.limits;
   const speed = Math.min(move.maxVelocity, projectLimit(limits.maxSpeed, limits.axisMaxSpeed, unit));
   const moveCruise2 = speed * speed;
-  const accel = projectLimit(limits.maxAccel, limits.axisMaxAccel, unit);
+  const accel = Math.min(move.maxAcceleration, projectLimit(limits.maxAccel, limits.axisMaxAccel, unit));
 
   // Pieces of the move: one, unless a nonlinear transform needs more.
   const fractions = hasNonlinearTransform(config) ? subdivisionFractions(config.transforms, p0, move.end) : WHOLE;

@@ -194,8 +194,21 @@ describe('bad input', () => {
     expectCode(() => q.append({ endPosition: { z: 1 } }), 'MOVE_DIMENSION', 'endPosition');
     expectCode(() => q.append({ endPosition: [5, 5], maxVelocity: 0 }), 'MOVE_INVALID', 'maxVelocity');
     expectCode(() => q.append({ endPosition: [5, 5], maxVelocity: NaN }), 'MOVE_INVALID', 'maxVelocity');
+    expectCode(() => q.append({ endPosition: [5, 5], maxAcceleration: 0 }), 'MOVE_INVALID', 'maxAcceleration');
+    expectCode(() => q.append({ endPosition: [5, 5], maxAcceleration: NaN }), 'MOVE_INVALID', 'maxAcceleration');
     expect(q.size).toBe(before);
     expect(q.tailPosition).toEqual([1, 1]);
+  });
+
+  it("a move's maxAcceleration caps its acceleration below the machine's, and only its own", () => {
+    const q = createMAXL(config()).queue;
+    q.append({ endPosition: [10, 0], maxAcceleration: 500 });
+    q.append({ endPosition: [0, 0] });
+    const segments = [q.transmitNext(0)!, q.transmitNext(0)!];
+    expect(segments[0].accel).toBe(500);
+    expect(segments[1].accel).toBe(3000);
+    expect(Math.max(...phasesOf(segments[0].timing!).map((ph) => Math.abs(ph.a0)))).toBeCloseTo(500, 9);
+    expect(Math.max(...phasesOf(segments[1].timing!).map((ph) => Math.abs(ph.a0)))).toBeCloseTo(3000, 9);
   });
 
   it('skips and counts zero-length moves', async () => {

@@ -93,17 +93,24 @@ export class Bno055 {
   private readonly page1 = new Uint8Array(128);
   private pointer = 0;
   private sample: Sample | null = null;
-  /** Every sample the chip produced while read, for tests: author time and value (m/s², machine frame, with noise). */
+  /**
+   * Every sample the chip produced while read, for tests: author time (the end of its
+   * averaging window) and value (m/s², machine frame, with noise). With a number for
+   * recordSamples, only about that many of the latest are kept.
+   */
   readonly samplesTaken: Array<{ t_us: number; accel: [number, number, number]; truth: [number, number, number] }> = [];
   readonly record: boolean;
+  private readonly recordLimit: number;
 
   constructor(
     readonly config: Bno055Config,
     private readonly specificForce: SpecificForceSource,
     private readonly random: () => number,
-    options: { recordSamples?: boolean } = {},
+    options: { recordSamples?: boolean | number } = {},
   ) {
-    this.record = options.recordSamples ?? false;
+    const r = options.recordSamples ?? false;
+    this.record = r !== false && r !== 0;
+    this.recordLimit = typeof r === 'number' ? Math.max(1, Math.floor(r)) : Infinity;
     this.reset();
   }
 
@@ -231,7 +238,11 @@ export class Bno055 {
       truth[1] + sigma * gaussian(this.random),
       truth[2] + sigma * gaussian(this.random),
     ];
-    if (this.record) this.samplesTaken.push({ t_us: t, accel, truth });
+    if (this.record) {
+      this.samplesTaken.push({ t_us: t, accel, truth });
+      // Trimmed a quarter at a time, so keeping a bounded record costs O(1) per sample.
+      if (this.samplesTaken.length > this.recordLimit * 1.25) this.samplesTaken.splice(0, this.samplesTaken.length - this.recordLimit);
+    }
     return { index, accel, gravity: [0, 0, STANDARD_GRAVITY] };
   }
 

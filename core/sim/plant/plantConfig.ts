@@ -21,8 +21,8 @@ export interface PlantConfig {
     address: number;
     /** µg/√Hz; the BNO055's datasheet figure is 150. */
     noiseDensity_ug: number;
-    /** Keep every sample the chip produced (ground truth for tests). */
-    recordSamples?: boolean;
+    /** Keep every sample the chip produced (ground truth for tests), or with a number about that many of the latest. */
+    recordSamples?: boolean | number;
   };
   /** An RGB LED strip on the tool, driven by `device` on `pin`, photographed from above. */
   ledStrip?: { device: string; pin: number; strip: LedStripConfig; image: ExposureImageConfig };

@@ -4,6 +4,12 @@
 // the author maps back to machine time to lay measured acceleration over the
 // planned one.
 //
+// The stamp is the instant the reading represents, not the instant it was
+// read: the chip averages over its sample period P (500 µs, bno055.h) and holds
+// the latest sample, so a read at t returns a window that ended in (t − P, t],
+// centred in (t − 3P/2, t − P/2]. Stamping t − P is within ±P/2 = ±250 µs of
+// that centre, whatever the phase between our reads and the chip's samples.
+//
 // Wiring: BNO055 breakout on SDA (A4), SCL (A5), 5 V (or 3.3 V), GND, ADR low.
 #include <MAXL.h>
 
@@ -38,5 +44,6 @@ void loop() {
   }
   if (!pacer.due(now, SAMPLE_PERIOD_US)) return;
   float xyz[3];
-  if (imu.readAcceleration(xyz)) accel.writeAt(now, xyz);  // stamped when the read began
+  // Read at `now` (the read is one bus transaction), stamped at the centre of the chip's window.
+  if (imu.readAcceleration(xyz)) accel.writeAt(now - Bno055::SAMPLE_PERIOD_US, xyz);
 }

@@ -51,11 +51,12 @@
 #endif
 #endif
 
-// Event slots: distinct event tracks one device can follow. The LightPainter
-// example follows 3 (bitmap, colour, cruise speed).
+// Event slots: distinct event tracks one device can follow (each costs RAM on a
+// small board). The LightPainter example follows 3 (bitmap, colour, cruise speed)
+// and raises it in its build_flags.txt; the default keeps 2.
 #ifndef MAXL_EVENT_SLOTS
 #if MAXL_SMALL_RAM
-#define MAXL_EVENT_SLOTS 3
+#define MAXL_EVENT_SLOTS 2
 #else
 #define MAXL_EVENT_SLOTS 8
 #endif

@@ -1,0 +1,192 @@
+/**
+ * Worker side: turns what the author captured over a test motion into a self-contained
+ * CaptureRecord (protocol.ts): every sensor's samples in the window, the plan read at
+ * each sample's author time, the planned acceleration curve, the as-planned segments,
+ * the metadata, and the analysis of the accelerometer channel along the motion's axis.
+ */
+import type { Maxl } from '../../../core/index.ts';
+import { analyseCapture } from '../../../core/capture/analysis.ts';
+import type { SensorCapture } from '../../../core/capture/sensorCapture.ts';
+import type { PlannedMotion, TestMotion } from '../../../core/capture/testMotions.ts';
+import type { Bno055 } from '../../../core/sim/plant/bno055.ts';
+import { resonancePeak_hz, stampTruth } from '../../../core/sim/plant/bno055Truth.ts';
+import type { SpringParameters } from '../../../core/sim/plant/springResponse.ts';
+import { PLAN_STEP_US, type CaptureAnalysisView, type CaptureRecord, type PlannedSegment, type SensorTrace, type SimulatorTruth } from './protocol.ts';
+import { decimateMax } from './decimate.ts';
+
+export interface RecordInput {
+  maxl: Maxl;
+  id: string;
+  date: string;
+  motion: TestMotion;
+  planned: PlannedMotion;
+  machine: string;
+  config: CaptureRecord['config'];
+  start_us: number;
+  end_us: number;
+  /** each capture's size when the motion began, by "device/reader" */
+  firstIndex: ReadonlyMap<string, number>;
+  cutShort: string | null;
+  warnings: string[];
+  /** on a simulated machine: its accelerometer (recording its samples), the board reading it, and the belt spring */
+  truth?: { chip: Bno055; device: string; spring: SpringParameters } | null;
+}
+
+/** Points of the spectrum kept for the plot. */
+const SPECTRUM_POINTS = 1500;
+
+export function buildRecord(input: RecordInput): CaptureRecord {
+  const { maxl, start_us, end_us } = input;
+  const axes = maxl.config.motionAxes;
+  const horizon = maxl.history.horizon_us;
+  const warnings = [...input.warnings];
+  if (start_us < horizon) {
+    warnings.push(`The as-planned history no longer holds the plan before ${(horizon / 1e6).toFixed(3)} s (it keeps ${maxl.history.capacity} segments): planned cells there are empty.`);
+  }
+  const sensors: SensorTrace[] = [];
+  for (const [key, capture] of maxl.captures) sensors.push(traceOf(maxl, capture, input.firstIndex.get(key) ?? 0, end_us, horizon));
+
+  const steps = Math.max(1, Math.floor((end_us - start_us) / PLAN_STEP_US) + 1);
+  const plan = { t_us: new Float64Array(steps), acceleration: axes.map(() => new Float64Array(steps)) };
+  for (let j = 0; j < steps; j++) {
+    const t = start_us + j * PLAN_STEP_US;
+    plan.t_us[j] = t;
+    const s = t < horizon ? null : maxl.sample(t);
+    axes.forEach((_, i) => (plan.acceleration[i][j] = s ? s.acceleration[i] : NaN));
+  }
+
+  const segments: PlannedSegment[] = [];
+  const h = maxl.history;
+  for (let i = Math.max(0, h.indexAt(start_us)); i < h.size; i++) {
+    const r = h.at(i);
+    if (r.startTime_us > end_us) break;
+    segments.push({ startTime_us: r.startTime_us, duration_s: r.duration_s, length: r.length, timing: [...r.timing], start: [...r.start], unit: [...r.unit] });
+  }
+
+  return {
+    id: input.id,
+    date: input.date,
+    description: input.planned.description,
+    motion: input.motion,
+    machine: input.machine,
+    config: input.config,
+    firmware: maxl.devices().map((d) => ({ device: d.name, link: d.label, firmware: d.firmware })),
+    syncError_us: maxl.estimate().syncError_us,
+    start_us,
+    end_us,
+    cutShort: input.cutShort,
+    warnings,
+    axes,
+    plan,
+    segments,
+    sensors,
+    analysis: analyse(maxl, sensors, input.motion, input.planned),
+    simulatorTruth: truthOf(sensors, input.truth ?? null),
+  };
+}
+
+function truthOf(sensors: SensorTrace[], truth: RecordInput['truth'] | null): SimulatorTruth | null {
+  if (!truth || !truth.chip.record) return null;
+  const trace = sensors.find((s) => s.device === truth.device && s.values.length === 3);
+  if (!trace) return null;
+  const t = stampTruth(truth.chip, trace.author_us, trace.values);
+  return {
+    device: truth.device,
+    stampErrorWorst_us: t.worst_us,
+    stampErrorMean_us: t.mean_us,
+    matched: t.matched,
+    unmatched: t.unmatched,
+    chipSamples: t.chipSamples,
+    naturalFrequency_hz: truth.spring.naturalFrequency_hz,
+    damping: truth.spring.damping,
+    truePeak_hz: resonancePeak_hz(truth.spring.naturalFrequency_hz, truth.spring.damping),
+  };
+}
+
+function traceOf(maxl: Maxl, capture: SensorCapture, first: number, end_us: number, horizon: number): SensorTrace {
+  const times = capture.timeColumn();
+  let last = times.length;
+  while (last > first && times[last - 1] > end_us) last--;
+  const n = Math.max(0, last - first);
+  const slice = (a: ArrayLike<number>) => Float64Array.from({ length: n }, (_, k) => a[first + k]);
+  const axes = maxl.config.motionAxes;
+  const author_us = slice(times);
+  const planned = {
+    position: axes.map(() => new Float64Array(n)),
+    velocity: axes.map(() => new Float64Array(n)),
+    acceleration: axes.map(() => new Float64Array(n)),
+    speed: new Float64Array(n),
+    pathAcceleration: new Float64Array(n),
+  };
+  for (let k = 0; k < n; k++) {
+    const s = author_us[k] < horizon ? null : maxl.sample(author_us[k]);
+    axes.forEach((_, i) => {
+      planned.position[i][k] = s ? s.position[i] : NaN;
+      planned.velocity[i][k] = s ? s.velocity[i] : NaN;
+      planned.acceleration[i][k] = s ? s.acceleration[i] : NaN;
+    });
+    planned.speed[k] = s ? s.speed : NaN;
+    planned.pathAcceleration[k] = s ? s.pathAcceleration : NaN;
+  }
+  // The capture is keyed by the session's label (a port name, or "sim:…"); the record keeps the device's own name.
+  const device = maxl.devices().find((d) => d.label === capture.device)?.name ?? capture.device;
+  return {
+    device,
+    reader: capture.reader,
+    channelNames: channelNames(capture),
+    author_us,
+    device_us: slice(capture.deviceTimeColumn()),
+    batch: slice(capture.batchColumn()),
+    index: slice(capture.indexColumn()),
+    seq: slice(capture.sequenceColumn()),
+    values: Array.from({ length: capture.channels }, (_, c) => slice(capture.channel(c))),
+    // Gaps with received samples on both sides inside the window, re-indexed to it.
+    gaps: capture.gaps.filter((g) => g.index > first && g.index < last).map((g) => ({ ...g, index: g.index - first })),
+    planned,
+  };
+}
+
+/** x, y, z for a three-channel sensor (an accelerometer), else the reader's name and index. */
+function channelNames(capture: SensorCapture): string[] {
+  if (capture.channels === 3) return ['ax_mm_s2', 'ay_mm_s2', 'az_mm_s2'].map((n) => `${capture.reader}_${n}`);
+  return Array.from({ length: capture.channels }, (_, c) => `${capture.reader}${c}`);
+}
+
+function analyse(maxl: Maxl, sensors: SensorTrace[], motion: TestMotion, planned: PlannedMotion): CaptureAnalysisView | null {
+  const sensor = sensors.findIndex((s) => s.values.length >= 1 && s.author_us.length >= 16);
+  if (sensor < 0) return null;
+  const trace = sensors[sensor];
+  const axis = maxl.config.motionAxes.indexOf(motion.axis);
+  const channel = axis < trace.values.length ? axis : 0;
+  let result;
+  try {
+    result = analyseCapture({
+      times_us: trace.author_us,
+      measured: trace.values[channel],
+      gapsBefore: trace.gaps.filter((g) => g.kind === 'lost').map((g) => g.index),
+      planned: (t) => maxl.sample(t).acceleration[axis],
+      fMin_hz: planned.band_hz[0],
+      fMax_hz: planned.band_hz[1],
+    });
+  } catch {
+    return null;
+  }
+  const nyquist = result.sampleRate_hz / 2;
+  const top = Math.min(nyquist, Number.isFinite(planned.band_hz[1]) ? planned.band_hz[1] * 1.3 : nyquist);
+  const bins = Math.min(result.spectrum.amplitude.length, Math.floor(top / result.spectrum.binHz) + 1);
+  const { x, y } = decimateMax(result.spectrum.amplitude.subarray(0, bins), result.spectrum.binHz, SPECTRUM_POINTS);
+  return {
+    sensor,
+    axis: motion.axis,
+    channel,
+    lag_ms: (result.lag?.lag_s ?? NaN) * 1000,
+    correlation: result.lag?.correlation ?? NaN,
+    rms_mm_s2: result.rmsError,
+    peak_hz: result.peak?.frequency_hz ?? NaN,
+    peakAmplitude: result.peak?.amplitude ?? NaN,
+    band_hz: [planned.band_hz[0], Math.min(planned.band_hz[1], nyquist)],
+    sampleRate_hz: result.sampleRate_hz,
+    spectrumHz: x,
+    spectrumAmplitude: y,
+  };
+}

@@ -1,0 +1,82 @@
+/**
+ * npm run bench -- capture
+ *
+ * The capture tool's analysis of resonance sweeps on the simulated accelerometer rig
+ * (an x stepper and a BNO055 on a 28 Hz, ζ = 0.06 belt), real firmware in wasm, virtual
+ * time (core/system/captureRun.ts). Each seed runs the same sweep (10 → 45 Hz at 0.7 Hz/s,
+ * a = 60 mm/s² per Hz, as the tool's defaults); a last run corrupts the accelerometer's
+ * link so that frames, and the samples in them, are lost.
+ *
+ * Figures (worst over the seeds):
+ *   stampErrorMs       max |author stamp − centre of the chip's averaging window| over every
+ *                      sample (ground truth: the BNO055 model's record). Target ≤ 0.5.
+ *   lagMs              the cross-correlation lag of measured behind planned acceleration
+ *                      (the plant's dynamics included: information, no target), seed 1
+ *   peakHz             the spectrum peak of the measured acceleration furthest from the truth
+ *   truePeakHz         the peak of the plant's response |H(jΩ)|, H = ω²/(s² + 2ζωs + ω²) from
+ *                      carriage to tool acceleration: f₀·√(1 − 2ζ²). Target |peak − true| ≤ 1 %.
+ *   peakErrorPercent   100·|peakHz − truePeakHz| / truePeakHz
+ *   excitationSeconds  the sweep's length (≤ 60)
+ *   samplesExpected    samples the board took over the sweeps (the chip's reads, ground truth)
+ *   samplesLost        samples reported lost over the sweeps (clean links: 0)
+ *   lossyRun           on a link corrupting 3e-3 of the bytes: samples taken, received, and
+ *                      reported lost; exact when received + reported = taken
+ */
+import { runCaptureOnAccelRig } from '../core/system/captureRun.ts';
+import type { TestMotion } from '../core/capture/testMotions.ts';
+
+const SEEDS = (process.env.SEEDS ?? '1,2,3').split(',').map(Number);
+const SWEEP: TestMotion = { kind: 'sweep', axis: 'x', fromHz: 10, toHz: 45, hzPerSecond: 0.7, accelPerHz: 60 };
+
+let stampError_us = 0;
+let peakHz = NaN;
+let truePeakHz = NaN;
+let lagMs = NaN;
+let excitationSeconds = 0;
+let samplesExpected = 0;
+let samplesReceived = 0;
+let samplesLost = 0;
+for (const seed of SEEDS) {
+  const r = await runCaptureOnAccelRig(SWEEP, seed);
+  const peak = r.analysis.peak?.frequency_hz ?? NaN;
+  console.log(
+    `seed ${seed}: stamps worst ${(r.stamps.worst_us / 1000).toFixed(3)} ms over ${r.stamps.matched} samples (${r.stamps.unmatched} unmatched), peak ${peak.toFixed(3)} Hz (true ${r.truePeak_hz.toFixed(3)}), lag ${((r.analysis.lag?.lag_s ?? NaN) * 1000).toFixed(2)} ms, RMS error ${r.analysis.rmsError.toFixed(0)} mm/s²`,
+  );
+  if (r.stamps.unmatched > 0) throw new Error(`seed ${seed}: ${r.stamps.unmatched} samples match no chip sample`);
+  stampError_us = Math.max(stampError_us, r.stamps.worst_us);
+  truePeakHz = r.truePeak_hz;
+  if (Number.isNaN(peakHz) || Math.abs(peak - truePeakHz) > Math.abs(peakHz - truePeakHz)) peakHz = peak;
+  if (Number.isNaN(lagMs)) lagMs = (r.analysis.lag?.lag_s ?? NaN) * 1000;
+  excitationSeconds = Math.max(excitationSeconds, r.excitation_s);
+  samplesExpected += r.samplesExpected;
+  samplesReceived += r.samplesReceived;
+  samplesLost += r.samplesLostReported;
+  await r.bench.sim.stop();
+}
+
+const lossy = await runCaptureOnAccelRig({ ...SWEEP, fromHz: 20, toHz: 35, hzPerSecond: 1.5 }, 7, { links: { accelerometer: { toAuthor: { corruptionProbability: 3e-3 } } } });
+const lossyRun = {
+  samplesTaken: lossy.samplesExpected,
+  samplesReceived: lossy.samplesReceived,
+  samplesReportedLost: lossy.samplesLostReported,
+  gaps: lossy.capture.gaps.filter((g) => g.kind === 'lost' && g.index > lossy.firstSample && g.index < lossy.firstSample + lossy.samplesReceived).length,
+  exact: lossy.samplesReceived + lossy.samplesLostReported === lossy.samplesExpected,
+  stampErrorMs: lossy.stamps.worst_us / 1000,
+};
+await lossy.bench.sim.stop();
+
+console.log(
+  JSON.stringify({
+    stampErrorMs: Number((stampError_us / 1000).toFixed(4)),
+    lagMs: Number(lagMs.toFixed(2)),
+    peakHz: Number(peakHz.toFixed(4)),
+    truePeakHz: Number(truePeakHz.toFixed(4)),
+    peakErrorPercent: Number(((100 * Math.abs(peakHz - truePeakHz)) / truePeakHz).toFixed(3)),
+    excitationSeconds: Number(excitationSeconds.toFixed(2)),
+    samplesLost,
+    samplesExpected,
+    samplesReceived,
+    seeds: SEEDS,
+    lossyRun,
+  }),
+);
