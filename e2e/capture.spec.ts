@@ -11,7 +11,8 @@
  * the spectrum) and 21-capture-overlay-zoomed (the plot alone, zoomed in on the resonance).
  */
 import { readFile } from 'node:fs/promises';
-import { expect, test, type Page } from '@playwright/test';
+import type { Page } from '@playwright/test';
+import { expect, test } from './support/test.ts';
 import { csvParse } from 'd3-dsv';
 import { openWorkbench, screenshot, SCREENSHOTS } from './support/workbench.ts';
 import { sampleTimeline, type TimedSegment } from '../core/trajectory/tracks.ts';
