@@ -33,15 +33,15 @@ test.afterAll(() => {
   stopCpuBurners(burners);
 });
 
-async function installFake(page: Page): Promise<void> {
+async function installFake(page: Page, serialInWorkers = true): Promise<void> {
   await page.addInitScript(
-    ({ pageModule, workerModule }) => {
+    ({ pageModule, workerModule, serialInWorkers }) => {
       // The worker's half reaches the fake boards over this channel; the app hands the
       // worker its end first thing (app/worker/workerTestHook.ts).
       const channel = new MessageChannel();
       (window as unknown as Record<string, unknown>).__MAXL_WORKER_TEST_HOOK__ = { module: workerModule, port: channel.port2 };
       // navigator.serial must exist before the app looks; the fake boards load behind it.
-      const ready = import(/* @vite-ignore */ pageModule).then((m) => m.installFakeSerial('lightPainter', channel.port1));
+      const ready = import(/* @vite-ignore */ pageModule).then((m) => m.installFakeSerial('lightPainter', channel.port1, { serialInWorkers }));
       (window as unknown as { fakeSerialReady: Promise<unknown> }).fakeSerialReady = ready;
       type Serial = { requestPort(): Promise<unknown>; getPorts(): Promise<unknown[]> };
       const fake = () => (navigator as unknown as { serial: Serial }).serial;
@@ -50,7 +50,7 @@ async function installFake(page: Page): Promise<void> {
         configurable: true,
       });
     },
-    { pageModule: FAKE_PAGE_MODULE, workerModule: FAKE_WORKER_MODULE },
+    { pageModule: FAKE_PAGE_MODULE, workerModule: FAKE_WORKER_MODULE, serialInWorkers },
   );
 }
 
@@ -59,6 +59,29 @@ async function truth(page: Page): Promise<Awaited<ReturnType<FakeSerialControl['
     const control = await (window as unknown as { fakeSerialReady: Promise<FakeSerialControl> }).fakeSerialReady;
     return control.truth();
   });
+}
+
+/** Adds the light painter's three boards, one port each, and waits until each says how it connected. */
+async function addThreeBoards(page: Page, how: string): Promise<void> {
+  const connected = page.locator('[data-testid=log-entry][data-code=CONNECT]');
+  for (let i = 0; i < 3; i++) {
+    await page.getByTestId('machine-menu').click();
+    await page.getByTestId('add-device').click();
+    await expect(connected.filter({ hasText: how })).toHaveCount(i + 1);
+  }
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+}
+
+/** Jogs +10 mm in x and checks the motors behind the fake ports: CoreXY at 80 steps/mm is +800 steps on a and on b. */
+async function jogMovesTheMotors(page: Page): Promise<void> {
+  const before = (await truth(page)).steps;
+  await page.getByTestId('step-10').click();
+  await page.getByTestId('jog-x+').click();
+  await expect.poll(async () => Number(await page.getByTestId('pos-x').getAttribute('data-value'))).toBeCloseTo(10, 6);
+  await expect.poll(async () => (await truth(page)).steps.a - before.a, { timeout: 10_000 }).toBe(800);
+  expect((await truth(page)).steps.b - before.b).toBe(800);
+  // Nothing starved: no device braked by itself.
+  await expect(page.getByTestId('phase')).toHaveText('ready');
 }
 
 /** The USB ids the fake boards report, in grant order: two identical Unos (motorA, motorB) and a Mega. */
@@ -70,17 +93,11 @@ test('Add device: the worker opens the granted ports and streams to the boards i
   // No port is granted yet: the default simulated machine opens in the worker.
   await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
 
-  // Add the three boards of the light painter, one port each.
-  const connected = page.locator('[data-testid=log-entry][data-code=CONNECT]');
-  for (let i = 0; i < 3; i++) {
-    await page.getByTestId('machine-menu').click();
-    await page.getByTestId('add-device').click();
-    await expect(connected.filter({ hasText: 'the worker owns its streams' })).toHaveCount(i + 1);
-  }
+  // Add the three boards of the light painter; the configuration kept from the simulated
+  // light painter subscribes exactly these boards.
+  await addThreeBoards(page, 'the worker owns its streams');
   // Two identical Unos: the worker told them apart by their place among the granted ports.
   expect((await truth(page)).opened).toEqual(['motorA', 'motorB', 'lightPainter']);
-  // The configuration kept from the simulated light painter subscribes exactly these boards.
-  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
   await expect(page.getByTestId('machine-menu')).toContainText('Boards');
   const devices = page.getByTestId('device');
   await expect(devices).toHaveCount(3);
@@ -93,17 +110,8 @@ test('Add device: the worker opens the granted ports and streams to the boards i
   // Ports the worker owns get the link's margin, not the bridge's 80 ms (app/worker/realBoardStreamer.ts).
   await expect(page.locator('[data-testid=log-entry][data-code=MARGIN]').last()).toContainText('13.28 ms of margin');
   await expect(page.locator('[data-testid=log-entry][data-code=BRIDGE]')).toHaveCount(0);
-  // A jog moves the motors behind the fake ports.
-  const before = (await truth(page)).steps;
-  await page.getByTestId('step-10').click();
-  await page.getByTestId('jog-x+').click();
-  await expect.poll(async () => Number(await page.getByTestId('pos-x').getAttribute('data-value'))).toBeCloseTo(10, 6);
-  // CoreXY at 80 steps/mm: +10 mm in x is +800 steps on a and on b.
-  await expect.poll(async () => (await truth(page)).steps.a - before.a, { timeout: 10_000 }).toBe(800);
-  expect((await truth(page)).steps.b - before.b).toBe(800);
+  await jogMovesTheMotors(page);
   await screenshot(page, '09-webserial-boards');
-  // Nothing starved: no device braked by itself.
-  await expect(page.getByTestId('phase')).toHaveText('ready');
 
   // Granted ports reconnect on load, opened by the worker again.
   await page.reload();
@@ -113,6 +121,18 @@ test('Add device: the worker opens the granted ports and streams to the boards i
   const after = await truth(page);
   expect(after.requests).toBe(0);
   expect(after.opened).toEqual(['motorA', 'motorB', 'lightPainter']);
+});
+
+test('where workers reach no serial port, the page bridges the streams and the boards keep 80 ms of margin', async ({ page }) => {
+  await installFake(page, false);
+  await page.goto('/');
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await addThreeBoards(page, 'through the page');
+  await expect(page.locator('[data-testid=log-entry][data-code=BRIDGE]')).toHaveCount(3);
+  await expect(page.locator('[data-testid=log-entry][data-code=BRIDGE]').first()).toContainText("this browser's workers cannot reach serial ports");
+  await expect(page.locator('[data-testid=log-entry][data-code=MARGIN]').last()).toContainText('80.00 ms of margin');
+  expect((await truth(page)).opened).toEqual(['motorA', 'motorB', 'lightPainter']);
+  await jogMovesTheMotors(page);
 });
 
 test('without navigator.serial or WebUSB, the menu says what is needed', async ({ page }) => {

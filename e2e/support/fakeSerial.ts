@@ -9,6 +9,11 @@
  * and owns their streams. So the workbench's connect code runs unchanged, and no
  * byte of the boards crosses the page.
  *
+ * With `serialInWorkers: false` the fake plays a browser whose workers reach no
+ * serial port (navigator.serial and navigator.usb absent there): the page then
+ * opens the port itself and bridges its streams to the worker, as the workbench
+ * does in such a browser.
+ *
  * Ports granted survive a reload (sessionStorage), as a browser's permissions do.
  */
 import { rpcClient } from './fakeSerialRpc.ts';
@@ -21,17 +26,29 @@ export interface FakeSerialControl {
   truth(): Promise<{ steps: Record<string, number>; opened: string[]; requests: number }>;
 }
 
-/** A port as the page sees it: no streams (the worker opens it), only its ids. */
-class FakePagePort {
-  readonly readable = null;
-  readonly writable = null;
-  constructor(readonly info: FakePortInfo) {}
+type Call = ReturnType<typeof rpcClient>;
 
-  async open(): Promise<void> {
-    throw new DOMException('The fake ports open in the MAXL worker, not on the page.', 'NotSupportedError');
+/** A port as the page sees it: its ids; streams only if the page opens it (the bridge). */
+class FakePagePort {
+  readable: ReadableStream<Uint8Array> | null = null;
+  writable: WritableStream<Uint8Array> | null = null;
+  constructor(
+    readonly info: FakePortInfo,
+    private readonly call: Call,
+  ) {}
+
+  async open(options: { baudRate: number }): Promise<void> {
+    if (!(options.baudRate > 0)) throw new TypeError('baudRate is required');
+    if (this.readable) throw new DOMException('The port is already open.', 'InvalidStateError');
+    const streams = await this.call<{ readable: ReadableStream<Uint8Array>; writable: WritableStream<Uint8Array> }>('open', this.info.index);
+    this.readable = streams.readable;
+    this.writable = streams.writable;
   }
 
-  async close(): Promise<void> {}
+  async close(): Promise<void> {
+    this.readable = null;
+    this.writable = null;
+  }
 
   getInfo(): { usbVendorId: number; usbProductId: number } {
     return { usbVendorId: this.info.usbVendorId, usbProductId: this.info.usbProductId };
@@ -39,14 +56,14 @@ class FakePagePort {
 }
 
 /** Starts the fake boards and puts the page's half of the fake on navigator.serial; `maxlWorker` is the channel end the worker test hook carries. */
-export async function installFakeSerial(presetId: string, maxlWorker: MessagePort): Promise<FakeSerialControl> {
+export async function installFakeSerial(presetId: string, maxlWorker: MessagePort, options: { serialInWorkers: boolean }): Promise<FakeSerialControl> {
   const boards = new Worker(new URL('./fakeSerialWorker.ts', import.meta.url), { type: 'module', name: 'fake-boards' });
   const granted = Number(sessionStorage.getItem(GRANTED_KEY) ?? '0');
-  boards.postMessage({ type: 'start', presetId, granted, maxlWorker }, [maxlWorker]);
+  boards.postMessage({ type: 'start', presetId, granted, serialInWorkers: options.serialInWorkers, maxlWorker }, [maxlWorker]);
   const call = rpcClient(boards);
   // One object per port, as a browser keeps them: getPorts() returns the same ones requestPort() did.
   const ports = new Map<number, FakePagePort>();
-  const portOf = (info: FakePortInfo) => ports.get(info.index) ?? ports.set(info.index, new FakePagePort(info)).get(info.index)!;
+  const portOf = (info: FakePortInfo) => ports.get(info.index) ?? ports.set(info.index, new FakePagePort(info, call)).get(info.index)!;
   const serial = {
     async requestPort(): Promise<FakePagePort> {
       const answer = await call<{ port: FakePortInfo; granted: number }>('requestPort');

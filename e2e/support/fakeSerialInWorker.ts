@@ -4,6 +4,8 @@
  * getPorts() but no requestPort(); its ports are the ones granted on the page,
  * which the fake boards' worker keeps. open() has that worker transfer the
  * device's link streams here, straight from the boards: no byte crosses the page.
+ * Or, if the spec plays a browser without serial ports in workers, it takes
+ * navigator.serial and navigator.usb away here.
  */
 /// <reference lib="webworker" />
 import { rpcClient } from './fakeSerialRpc.ts';
@@ -40,9 +42,15 @@ class FakeWorkerPort extends EventTarget {
   }
 }
 
-export function installInWorker(port: MessagePort | null): void {
+export async function installInWorker(port: MessagePort | null): Promise<void> {
   if (!port) throw new Error('the fake serial needs the channel to the fake boards (the hook carries none)');
   const call = rpcClient(port);
+  if (!(await call<boolean>('serialInWorkers'))) {
+    // A browser whose workers reach no port: the workbench must bridge through the page.
+    Object.defineProperty(navigator, 'serial', { value: undefined, configurable: true });
+    Object.defineProperty(navigator, 'usb', { value: undefined, configurable: true });
+    return;
+  }
   const ports = new Map<number, FakeWorkerPort>();
   const portOf = (info: FakePortInfo) => ports.get(info.index) ?? ports.set(info.index, new FakeWorkerPort(info, call)).get(info.index)!;
   const serial = Object.assign(new EventTarget(), {

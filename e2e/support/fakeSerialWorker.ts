@@ -7,10 +7,12 @@
  *
  * Two ends call it (fakeSerialRpc.ts):
  *  - the page's fake (fakeSerial.ts): requestPort, getPorts, and the spec's
- *    ground truth (motor steps, ports opened);
+ *    ground truth (motor steps, ports opened); and open, for the bridge of a
+ *    browser whose workers reach no port;
  *  - the MAXL worker's fake (fakeSerialInWorker.ts), over a MessageChannel:
- *    getPorts and open. Opening a port transfers its device's link streams
- *    straight to the MAXL worker: no byte crosses the page.
+ *    whether this browser's workers have serial ports at all, getPorts and open.
+ *    Opening a port transfers its device's link streams straight to the opener:
+ *    from the MAXL worker's open, no byte crosses the page.
  *
  * The boards run on paced virtual time: like firmware, which loops without
  * waiting on a browser's timers, every device loop and link delay happens at its
@@ -48,6 +50,8 @@ let boards: Board[] = [];
 let granted = 0;
 let requests = 0;
 const opened: string[] = [];
+/** Whether the MAXL worker's navigator has serial ports (false: a browser that needs the bridge). */
+let serialInWorkers = true;
 let started!: () => void;
 const ready = new Promise<void>((resolve) => (started = resolve));
 
@@ -59,8 +63,20 @@ function grantedPorts(): FakePortInfo[] {
   return boards.slice(0, granted).map((_, i) => info(i));
 }
 
+/** Hands a granted port's link streams to whoever opens it (once: a device's link cannot be handed out twice). */
+function open(index: number): { value: unknown; transfer: Transferable[] } {
+  const board = boards[index];
+  if (!board || index >= granted) throw new RpcError('NotFoundError', `port ${index} is not granted`);
+  if (!board.readable || !board.writable) throw new RpcError('InvalidStateError', 'The port is already open.');
+  const { readable, writable } = board;
+  board.readable = null;
+  board.writable = null;
+  opened.push(board.name);
+  return { value: { readable, writable }, transfer: [readable, writable] as unknown as Transferable[] };
+}
+
 /** The page's calls. */
-async function fromPage(call: string): Promise<{ value: unknown }> {
+async function fromPage(call: string, args: unknown): Promise<{ value: unknown; transfer?: Transferable[] }> {
   await ready;
   switch (call) {
     case 'requestPort':
@@ -70,6 +86,8 @@ async function fromPage(call: string): Promise<{ value: unknown }> {
       return { value: { port: info(granted - 1), granted } };
     case 'getPorts':
       return { value: grantedPorts() };
+    case 'open':
+      return open(args as number);
     case 'truth':
       sim.sync();
       return { value: { steps: sim.plant.motorSteps(), opened, requests } };
@@ -81,30 +99,24 @@ async function fromPage(call: string): Promise<{ value: unknown }> {
 async function fromMaxlWorker(call: string, args: unknown): Promise<{ value: unknown; transfer?: Transferable[] }> {
   await ready;
   switch (call) {
+    case 'serialInWorkers':
+      return { value: serialInWorkers };
     case 'getPorts':
       return { value: grantedPorts() };
-    case 'open': {
-      const index = args as number;
-      const board = boards[index];
-      if (!board || index >= granted) throw new RpcError('NotFoundError', `port ${index} is not granted`);
-      if (!board.readable || !board.writable) throw new RpcError('InvalidStateError', 'The port is already open.');
-      const { readable, writable } = board;
-      board.readable = null;
-      board.writable = null;
-      opened.push(board.name);
-      return { value: { readable, writable }, transfer: [readable, writable] as unknown as Transferable[] };
-    }
+    case 'open':
+      return open(args as number);
   }
   throw new RpcError('NotSupportedError', `the fake boards have no worker call ${call}`);
 }
 
 scope.addEventListener('message', async (m: MessageEvent) => {
-  const msg = m.data as { type?: string; presetId: string; granted: number; maxlWorker: MessagePort };
+  const msg = m.data as { type?: string; presetId: string; granted: number; serialInWorkers: boolean; maxlWorker: MessagePort };
   if (msg.type !== 'start') return;
   granted = msg.granted;
+  serialInWorkers = msg.serialInWorkers;
   rpcServer(msg.maxlWorker, fromMaxlWorker);
   sim = await startSimulatedMachine(msg.presetId, new PacedScheduler(), (err) => console.error('fake boards:', err));
   boards = Object.entries(sim.links).map(([name, link]) => ({ name, readable: link.readable, writable: link.writable }));
   started();
 });
-rpcServer(scope as unknown as Parameters<typeof rpcServer>[0], (call) => fromPage(call));
+rpcServer(scope as unknown as Parameters<typeof rpcServer>[0], fromPage);
