@@ -1,12 +1,15 @@
 #!/usr/bin/env node
-// `npm run bench -- fuzz [--runs N] [--jobs J] [--seed S]`: the firmware's
+// `npm run bench -- fuzz [--runs N] [--jobs J] [--seed S] [--max-seconds T]`: the firmware's
 // libFuzzer target (firmware/fuzz/fuzz_device.cpp: the frame receiver, the
 // session, every message handler, the motion state machine and the readers,
 // on the host hardware layer, under ASan and UBSan) run at scale: N executions
 // in all (default 10 000 000), split over J fuzzer processes (default 2, the
 // machine's cores), each from the seed corpus firmware/fuzz/corpus plus the
 // shared working corpus firmware/build/fuzz/corpus. `npm test` keeps its short
-// 25 s run (scripts/firmware-fuzz.sh).
+// 25 s run (scripts/firmware-fuzz.sh). With --max-seconds T each process also
+// stops after T seconds (libFuzzer's -max_total_time), and the JSON says how far
+// it got; SIGINT stops the processes the same way (libFuzzer prints its stats).
+// Both exit non-zero when fewer than N executions ran.
 //
 // Prints one JSON object as the last line. Every figure is parsed from
 // libFuzzer's own output (-print_final_stats=1), never assumed:
@@ -45,6 +48,14 @@ const argValue = (name, fallback) => {
 const totalRuns = argValue('--runs', 10_000_000);
 const jobs = argValue('--jobs', 2);
 const baseSeed = argValue('--seed', 1 + (Date.now() % 1_000_000));
+const maxSeconds = argValue('--max-seconds', 0);
+const deadline = maxSeconds > 0 ? Date.now() + maxSeconds * 1000 : Infinity;
+let interrupted = false;
+const live = new Set();
+process.on('SIGINT', () => {
+  interrupted = true; // each fuzzer, told the same, prints its stats and stops
+  for (const p of live) p.kill('SIGINT');
+});
 const MAX_CRASHES_PER_PROCESS = 3;
 const log = (...a) => console.error('[bench fuzz]', ...a);
 
@@ -59,7 +70,7 @@ mkdirSync(path.join(out, 'corpus'), { recursive: true });
 
 /** One libFuzzer process for `runs` executions; resolves to what its output said. */
 function fuzzOnce(worker, attempt, runs) {
-  const logFile = path.join(out, `bench-${worker}-${attempt}.log`);
+  const logFile = path.join(out, `bench-${baseSeed}-${worker}-${attempt}.log`);
   const sink = createWriteStream(logFile);
   const args = [
     path.join(out, 'corpus'),
@@ -70,10 +81,12 @@ function fuzzOnce(worker, attempt, runs) {
     '-timeout=5',
     '-print_final_stats=1',
     `-artifact_prefix=${out}/bench-`,
+    ...(deadline === Infinity ? [] : [`-max_total_time=${Math.max(1, Math.round((deadline - Date.now()) / 1000))}`]),
   ];
   return new Promise((resolve, reject) => {
     const p = spawn(path.join(out, 'fuzz_device'), args, { cwd: root, stdio: ['ignore', 'pipe', 'pipe'] });
-    const result = { executions: null, seconds: null, execPerSecond: null, coverage: 0, artifact: null, status: null, tail: '' };
+    live.add(p);
+    const result = { executions: null, seconds: null, execPerSecond: null, coverage: 0, artifact: null, status: null, tail: '', stoppedEarly: false };
     let pending = '';
     let lastProgress = 0;
     const onText = (chunk) => {
@@ -92,15 +105,17 @@ function fuzzOnce(worker, attempt, runs) {
           }
         }
         if ((m = line.match(/^Done (\d+) runs in (\d+) second/))) result.seconds = Number(m[2]);
-        if ((m = line.match(/^stat::number_of_executed_units: (\d+)/))) result.executions = Number(m[1]);
-        if ((m = line.match(/^stat::average_exec_per_sec: (\d+)/))) result.execPerSecond = Number(m[1]);
+        if ((m = line.match(/^stat::number_of_executed_units:\s+(\d+)/))) result.executions = Number(m[1]);
+        if ((m = line.match(/^stat::average_exec_per_sec:\s+(\d+)/))) result.execPerSecond = Number(m[1]);
         if ((m = line.match(/Test unit written to (\S+)/))) result.artifact = m[1];
+        if (/libFuzzer: run interrupted; exiting/.test(line)) result.stoppedEarly = true;
       }
     };
     p.stdout.on('data', onText);
     p.stderr.on('data', onText);
     p.on('error', reject);
     p.on('close', (status) => {
+      live.delete(p);
       sink.end();
       result.status = status;
       result.logFile = path.relative(root, logFile);
@@ -111,7 +126,7 @@ function fuzzOnce(worker, attempt, runs) {
 
 /** A worker's share, restarted after a crash for what is left of it. */
 async function worker(index, share) {
-  const acc = { executions: 0, seconds: 0, execPerSecond: [], coverage: 0, crashes: [], logs: [] };
+  const acc = { executions: 0, seconds: 0, execPerSecond: [], coverage: 0, crashes: [], logs: [], stoppedEarly: false };
   let attempt = 0;
   while (acc.executions < share && acc.crashes.length < MAX_CRASHES_PER_PROCESS) {
     const started = Date.now();
@@ -126,6 +141,10 @@ async function worker(index, share) {
     acc.seconds += r.seconds ?? (Date.now() - started) / 1000;
     if (r.execPerSecond !== null) acc.execPerSecond.push(r.execPerSecond);
     acc.coverage = Math.max(acc.coverage, r.coverage);
+    if (r.stoppedEarly || interrupted || Date.now() >= deadline - 5000) {
+      acc.stoppedEarly = true; // SIGINT or --max-seconds: not a crash
+      break;
+    }
     if (r.status !== 0 || r.artifact) {
       acc.crashes.push({ artifact: r.artifact ? path.relative(root, r.artifact) : null, log: r.logFile, exit: r.status });
       log(`process ${index}: CRASH (exit ${r.status}), input ${r.artifact ?? '(none written)'}; see ${r.logFile}`);
@@ -154,6 +173,7 @@ const summary = {
   perProcess: results.map((r) => ({ executions: r.executions, seconds: r.seconds, averageExecPerSec: r.execPerSecond })),
   artifacts: crashes.map((c) => c.artifact ?? c.log),
   requestedExecutions: totalRuns,
+  stoppedEarly: results.some((r) => r.stoppedEarly) ? (interrupted ? 'SIGINT' : `--max-seconds ${maxSeconds}`) : null,
 };
 console.log(JSON.stringify(summary));
 process.exit(crashes.length > 0 || executions < totalRuns ? 1 : 0);
