@@ -95,7 +95,8 @@ export async function startUnoBoard(options: UnoBoardOptions = {}): Promise<UnoB
   let target_us = 0;
   let stopped = false;
   let stderr = '';
-  let waiters: Array<{ at_us: number; resolve: () => void }> = [];
+  let waiters: Array<{ at_us: number; resolve: () => void; reject: (e: Error) => void }> = [];
+  let died: Error | null = null;
   let chain = Promise.resolve();
   // the lockstep's view of the link's bytes
   let linkOpen = false;
@@ -134,7 +135,10 @@ export async function startUnoBoard(options: UnoBoardOptions = {}): Promise<UnoB
     let pending = '';
     child.on('error', (e) => reject(new Error(`HIL: cannot start the simavr harness ${build.harness}: ${e.message}`)));
     child.on('exit', (code) => {
-      if (!stopped) reject(new Error(`HIL: the simavr harness exited (${code}): ${stderr}`));
+      if (stopped) return;
+      died = new Error(`HIL: the simavr harness exited (${code}): ${stderr}`);
+      reject(died);
+      for (const w of waiters.splice(0)) w.reject(died);
     });
     child.stderr!.on('data', (d: Buffer) => (stderr = (stderr + d.toString()).slice(-4000)));
     child.stdout!.on('data', (d: Buffer) => {
@@ -202,9 +206,10 @@ export async function startUnoBoard(options: UnoBoardOptions = {}): Promise<UnoB
       };
     },
     runUntil(t_us: number) {
-      return new Promise<void>((resolve) => {
+      return new Promise<void>((resolve, reject) => {
+        if (died) return reject(died);
         if (cycle / CYCLES_PER_US >= t_us) return resolve();
-        waiters.push({ at_us: t_us, resolve });
+        waiters.push({ at_us: t_us, resolve, reject });
         const idle = target_us <= cycle / CYCLES_PER_US;
         target_us = Math.max(target_us, t_us);
         if (idle) grant();
