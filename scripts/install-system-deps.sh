@@ -7,7 +7,8 @@
 #   gcc-avr avr-libc         AVR builds of the firmware examples (avr-gcc 5.4)
 #   arduino-core-avr         the real Arduino AVR core
 #   arduino-mk               Arduino.mk, the makefile that builds sketches
-#   simavr libsimavr-dev     runs AVR ELFs for the firmware benchmark
+#   simavr libsimavr-dev     runs AVR ELFs for the firmware benchmark, and the Uno behind a
+#                            pty for the hardware-in-the-loop suite (scripts/firmware-hil.sh)
 #   cmake libgtest-dev nlohmann-json3-dev
 #                            host build of the firmware library, its GoogleTest suite,
 #                            and JSON for reading the shared test vectors

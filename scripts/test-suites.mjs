@@ -43,6 +43,15 @@ export const suites = [
     tools: ['clang++', '/usr/lib/llvm-14/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a'],
   },
   {
+    name: 'hil',
+    describe: 'hardware in the loop: the Stepper example built for the Uno, in simavr with its UART on a pty, driven by the Node core through serialport (hello, clock sync, every step against the plan, stop, link cut)',
+    command: ['bash', 'scripts/firmware-hil.sh'],
+    tools: [
+      'avr-gcc', 'avr-nm', 'make', 'gcc', '/usr/include/simavr/sim_avr.h',
+      '/usr/share/arduino/Arduino.mk', '/usr/share/arduino/hardware/arduino/avr/cores/arduino/Arduino.h',
+    ],
+  },
+  {
     name: 'e2e',
     describe: 'Playwright in Debian chromium: the workbench on the simulated machine (configure, jog, job, STOP, light painting) and the WebSerial path through a fake navigator.serial',
     command: ['npx', 'playwright', 'test'],

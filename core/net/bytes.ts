@@ -140,7 +140,13 @@ export class ByteReader {
     if (n > 31) throw new WireFormatError('name longer than 31 bytes');
     this.need(n);
     let s = '';
-    for (let i = 0; i < n; i++) s += String.fromCharCode(this.buf[this.offset++]);
+    for (let i = 0; i < n; i++) {
+      const b = this.buf[this.offset + i];
+      // the encoder's rule (str above): printable ASCII only, so a name can be shown and logged as is
+      if (b < 0x20 || b > 0x7e) throw new WireFormatError(`name byte ${i} is 0x${b.toString(16).padStart(2, '0')}, not printable ASCII`);
+      s += String.fromCharCode(b);
+    }
+    this.offset += n;
     return s;
   }
   /** Fails unless every byte was read. */
