@@ -7,21 +7,32 @@ import type { Page } from '@playwright/test';
 import { expect, test } from './support/test.ts';
 import { dataNumber, openWorkbench, screenshot, startJob } from './support/workbench.ts';
 
+/** The view's test hook: the worker that draws the view answers these two (the page awaits them). */
 interface ViewHook {
-  maxlView: { cameraPose: { position: number[]; target: number[] }; workAreaBounds: number[] };
+  maxlView: { cameraPose: Promise<{ position: number[]; target: number[] }>; workAreaBounds: Promise<number[]> };
 }
 
-/** Pixels of the overlay drawn in the transmitted colour (#e69a1c), within a tolerance. */
+/**
+ * Pixels of the view, as on screen, in the transmitted colour (#e69a1c) within a
+ * tolerance. The view is drawn in a worker (its canvases are OffscreenCanvas), so
+ * the page cannot read them: a screenshot of the view can. The legend, whose
+ * swatch has that colour, is masked out.
+ */
 async function lockedPixels(page: Page): Promise<number> {
-  return page.evaluate(() => {
-    const overlay = document.querySelectorAll('canvas')[1] as HTMLCanvasElement;
-    const data = (overlay.getContext('2d') as CanvasRenderingContext2D).getImageData(0, 0, overlay.width, overlay.height).data;
+  const view = page.getByTestId('view-canvas');
+  const png = await view.screenshot({ mask: [page.getByTestId('legend')] });
+  return page.evaluate(async (base64) => {
+    const image = await createImageBitmap(await (await fetch(`data:image/png;base64,${base64}`)).blob());
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const g = canvas.getContext('2d') as OffscreenCanvasRenderingContext2D;
+    g.drawImage(image, 0, 0);
+    const data = g.getImageData(0, 0, image.width, image.height).data;
     let n = 0;
     for (let i = 0; i < data.length; i += 4) {
       if (Math.abs(data[i] - 0xe6) < 12 && Math.abs(data[i + 1] - 0x9a) < 12 && Math.abs(data[i + 2] - 0x1c) < 12 && data[i + 3] > 200) n++;
     }
     return n;
-  });
+  }, png.toString('base64'));
 }
 
 test('the locked path is visible; the top view pans; another machine drops the old job', async ({ page }) => {

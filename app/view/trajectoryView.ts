@@ -9,10 +9,15 @@
  * up with: after each draw, the time until the next frame says what a draw costs,
  * and a costly scene (a million segments on a software renderer) is redrawn at most
  * every few such costs while it streams. Camera moves always draw at once.
+ *
+ * It runs in the view worker (viewWorker.ts), on the page's canvases handed over
+ * as OffscreenCanvas, with OrbitControls on an ElementProxy that the page's input
+ * events are replayed on.
  */
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import type { Snapshot } from '../worker/protocol.ts';
+import type { ElementProxy } from './elementProxy.ts';
+import type { CameraMode, CameraPose, ViewSnapshot, ViewStats } from './viewProtocol.ts';
 import { AppendOnlyPath } from './appendOnlyPath.ts';
 import { JobPreview } from './jobPreview.ts';
 import { QueueLines } from './queueLines.ts';
@@ -20,7 +25,7 @@ import { SCENE_COLORS, STATE_COLORS } from './colors.ts';
 import { ToolOverlay } from './toolOverlay.ts';
 import { WorkArea } from './workArea.ts';
 
-export type CameraMode = 'top' | '3d';
+export type { CameraMode };
 
 export class TrajectoryView {
   readonly renderer: THREE.WebGLRenderer;
@@ -33,7 +38,6 @@ export class TrajectoryView {
   private readonly overlay: ToolOverlay;
   private readonly originPosition = new THREE.Vector3();
   private readonly workArea = new WorkArea();
-  private readonly resizeObserver: ResizeObserver;
   private runtimeId = -1;
   private dirty = true;
   private mode: CameraMode = 'top';
@@ -48,16 +52,21 @@ export class TrajectoryView {
   renders = 0;
   readonly toolPosition = new THREE.Vector3();
 
+  /** Called after each draw of the scene. */
+  onRender: () => void = () => {};
+
   constructor(
-    private readonly canvas: HTMLCanvasElement,
-    overlayCanvas: HTMLCanvasElement,
+    canvas: OffscreenCanvas,
+    overlayCanvas: OffscreenCanvas,
+    private readonly element: ElementProxy,
+    devicePixelRatio: number,
   ) {
     this.overlay = new ToolOverlay(overlayCanvas);
     this.renderer = new THREE.WebGLRenderer({ canvas, antialias: false });
     // A software renderer (no GPU: SwiftShader, llvmpipe) draws every pixel on the CPU,
     // and with software compositing the page waits for each frame: draw it at 3/4 of
     // the CSS pixels there. A GPU gets the display's full resolution.
-    this.renderer.setPixelRatio(softwareRenderer(this.renderer.getContext()) ? 0.75 : Math.min(2, window.devicePixelRatio));
+    this.renderer.setPixelRatio(softwareRenderer(this.renderer.getContext()) ? 0.75 : Math.min(2, devicePixelRatio));
     this.scene.background = new THREE.Color(SCENE_COLORS.background);
     this.scene.add(
       this.workArea.group,
@@ -66,15 +75,13 @@ export class TrajectoryView {
       this.locked.transmittedLines,
       this.queue.lines,
     );
-    this.controls = new OrbitControls(this.camera, canvas);
+    this.controls = new OrbitControls(this.camera, element as unknown as HTMLElement);
     this.controls.enableDamping = false;
     this.controls.screenSpacePanning = true;
     this.controls.addEventListener('change', () => {
       this.updateScale();
       this.requestRender(true);
     });
-    this.resizeObserver = new ResizeObserver(() => this.resize());
-    this.resizeObserver.observe(canvas.parentElement ?? canvas);
     this.setMode('top');
     this.resize();
   }
@@ -83,7 +90,7 @@ export class TrajectoryView {
     return this.mode;
   }
 
-  get stats() {
+  get stats(): ViewStats {
     return {
       lockedSegments: this.locked.segments,
       historicalSegments: this.locked.historicalSegments,
@@ -95,7 +102,7 @@ export class TrajectoryView {
   }
 
   /** Where the camera is and what it looks at, mm (for the page's tests and benches). */
-  get cameraPose(): { position: number[]; target: number[]; up: number[] } {
+  get cameraPose(): CameraPose {
     return { position: this.camera.position.toArray(), target: this.controls.target.toArray(), up: this.camera.up.toArray() };
   }
 
@@ -116,7 +123,7 @@ export class TrajectoryView {
     this.drawOverlay();
   }
 
-  applySnapshot(s: Snapshot): void {
+  applySnapshot(s: ViewSnapshot): void {
     if (s.runtimeId !== this.runtimeId) {
       this.runtimeId = s.runtimeId;
       this.locked.clear();
@@ -126,7 +133,7 @@ export class TrajectoryView {
     if (s.locked.length > 0) this.locked.append(s.lockedFrom, s.locked);
     this.locked.setHistorical(s.historical);
     if (s.queue && s.queueStates) this.queue.set(s.queue, s.queueStates);
-    this.preview.setFed(s.job && s.jobFed > 0 ? s.jobFed : 0);
+    this.preview.setFed(s.jobFed);
     const p = s.position;
     this.toolPosition.set(p[0] ?? 0, p[1] ?? 0, p[2] ?? 0);
     this.drawOverlay();
@@ -207,6 +214,7 @@ export class TrajectoryView {
     this.renderer.render(this.scene, this.camera);
     this.lastDraw = start;
     this.renders++;
+    this.onRender();
     // What the draw cost shows in when the next frame comes.
     if (!this.measuring) {
       this.measuring = true;
@@ -231,15 +239,14 @@ export class TrajectoryView {
 
   dispose(): void {
     cancelAnimationFrame(this.frameHandle);
-    this.resizeObserver.disconnect();
     this.controls.dispose();
     this.renderer.dispose();
   }
 
-  private resize(): void {
-    const host = this.canvas.parentElement ?? this.canvas;
-    const width = Math.max(1, host.clientWidth);
-    const height = Math.max(1, host.clientHeight);
+  /** The canvas's CSS size (the element proxy's), px: the drawing buffer follows at the pixel ratio. */
+  resize(): void {
+    const width = Math.max(1, this.element.clientWidth);
+    const height = Math.max(1, this.element.clientHeight);
     this.renderer.setSize(width, height, false);
     this.width = width;
     this.height = height;
