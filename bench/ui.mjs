@@ -16,6 +16,10 @@
  *                   longestTaskMs, the task spent the rest waiting for a core that
  *                   other processes held (a shared, overloaded machine)
  *   mainThreadCpuPercent  the main thread's CPU time over the window, % of one core
+ *   longestReadbackMs, readbacks  the longest wait of the main thread for a WebGL
+ *                   frame read back from the GPU process (GLES2::ReadPixels events on
+ *                   CrRendererMain: software compositing reads a page's WebGL canvas
+ *                   back there), and how many; 0 when the view draws elsewhere
  *   longestAnimationFrameMs  the longest animation frame that the Long Animation
  *                   Frames API reported meanwhile (PerformanceObserver type
  *                   'long-animation-frame': frames over 50 ms only; 0 means none),
@@ -124,7 +128,7 @@ await page.evaluate(() => {
  * ('toplevel' ThreadControllerImpl::RunTask on the renderer's CrRendererMain thread;
  * a nested task is shorter than the one around it, so the longest is a top one).
  */
-const startTrace = () => browser.startTracing(page, { categories: ['toplevel', '__metadata'] });
+const startTrace = () => browser.startTracing(page, { categories: ['toplevel', '__metadata', 'gpu'] });
 async function stopTrace() {
   const trace = JSON.parse((await browser.stopTracing()).toString());
   const events = trace.traceEvents ?? trace;
@@ -140,7 +144,10 @@ async function stopTrace() {
     tasks.push({ wall: e.dur / 1000, cpu: (e.tdur ?? NaN) / 1000 });
   }
   if (tasks.length === 0) throw new Error('the trace holds no main-thread task: is the trace category right for this chromium?');
+  const readbacks = events.filter((e) => e.ph === 'X' && e.name === 'GLES2::ReadPixels' && main.has(`${e.pid}/${e.tid}`)).map((e) => e.dur / 1000);
   return {
+    readbacks: readbacks.length,
+    longestReadback: readbacks.length ? Math.max(...readbacks) : 0,
     longest: Math.max(...tasks.map((t) => t.wall)),
     longestCpu: Math.max(...tasks.map((t) => t.cpu)),
     cpuTotal: tasks.reduce((sum, t) => sum + t.cpu, 0),
@@ -172,7 +179,7 @@ else await delay(seconds * 1000);
 const stream = { ...(await readInstruments()), ...(await stopTrace()) };
 const job = await page.evaluate(() => window.maxlWorkbench.job);
 const errors = await page.evaluate(() => window.maxlWorkbench.log.filter((e) => e.level === 'error').map((e) => `${e.code}: ${e.message.split('\n')[0]}`));
-console.error(`[ui] main thread while streaming: ${stream.tasks} tasks, longest ${stream.longest.toFixed(1)} ms (most CPU in one task ${stream.longestCpu.toFixed(1)} ms), ${stream.over50} over 50 ms; longest animation frame ${stream.loaf.duration.toFixed(0)} ms (${stream.loaf.work || 'none over 50 ms'})`);
+console.error(`[ui] main thread while streaming: ${stream.tasks} tasks, longest ${stream.longest.toFixed(1)} ms (most CPU in one task ${stream.longestCpu.toFixed(1)} ms), ${stream.over50} over 50 ms, ${stream.readbacks} WebGL read-backs (longest ${stream.longestReadback.toFixed(1)} ms); longest animation frame ${stream.loaf.duration.toFixed(0)} ms (${stream.loaf.work || 'none over 50 ms'})`);
 console.error(`[ui] streamed ${job.doneSegments - done0} segments in ${stream.elapsed.toFixed(1)} s; job ${job.phase}; errors: ${errors.length ? errors.slice(0, 5).join(' | ') : 'none'}`);
 await page.evaluate(() => window.maxlWorkbench.send({ type: 'job-cancel' }));
 await page.waitForFunction(() => ['cancelled', 'done', 'failed'].includes(window.maxlWorkbench.job?.phase), null, { timeout: 60_000 });
@@ -242,6 +249,8 @@ const result = {
   longTasks: stream.over50,
   longestTaskCpuMs: Math.round(stream.longestCpu * 10) / 10,
   mainThreadCpuPercent: Math.round((stream.cpuTotal / 1000 / stream.elapsed) * 1000) / 10,
+  longestReadbackMs: Math.round(stream.longestReadback * 10) / 10,
+  readbacks: stream.readbacks,
   mainThreadTasks: stream.tasks,
   longestAnimationFrameMs: Math.round(stream.loaf.duration * 10) / 10,
   longestAnimationFrameWork: stream.loaf.work,

@@ -52,9 +52,6 @@ export class TrajectoryView {
   renders = 0;
   readonly toolPosition = new THREE.Vector3();
 
-  /** Called after each draw of the scene. */
-  onRender: () => void = () => {};
-
   constructor(
     canvas: OffscreenCanvas,
     overlayCanvas: OffscreenCanvas,
@@ -214,7 +211,6 @@ export class TrajectoryView {
     this.renderer.render(this.scene, this.camera);
     this.lastDraw = start;
     this.renders++;
-    this.onRender();
     // What the draw cost shows in when the next frame comes.
     if (!this.measuring) {
       this.measuring = true;

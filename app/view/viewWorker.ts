@@ -25,7 +25,11 @@ function post(e: ViewEvent): void {
   (self as unknown as Worker).postMessage(e);
 }
 
-/** Tells the page the counts and the tool as drawn, when they changed. */
+/**
+ * Tells the page the counts and the tool as drawn, when they changed: after a
+ * message, not after each draw (a draw changes only `renders`), so that the page
+ * gets no more messages than it sends.
+ */
 function report(): void {
   if (!view) return;
   const p = view.toolPosition;
@@ -41,7 +45,6 @@ self.onmessage = (m: MessageEvent<ViewCommand>) => {
   if (c.type === 'init') {
     element.place(c.place.left, c.place.top, c.place.width, c.place.height);
     view = new TrajectoryView(c.canvas, c.overlay, element, c.devicePixelRatio);
-    view.onRender = report;
     report();
     return;
   }
