@@ -4,8 +4,8 @@
  * simulated machine (the light painter), measured with Playwright.
  *
  *   showMillionMs   from asking for a 1 000 000-segment job to that job drawn in the
- *                   3D view (worker draws the path, transfers it, the page uploads and
- *                   renders it)
+ *                   3D view (the core's worker draws the path and transfers it to the page,
+ *                   which hands it on to the view's worker; that uploads and draws it)
  *   longestTaskMs   the longest task on the page's main thread (the renderer's
  *                   CrRendererMain thread), of any length, from a Chromium trace
  *                   (the 'toplevel' category's RunTask events), while a
@@ -37,12 +37,13 @@
  * for a laptop's background work; the JSON's `load` says how many. UI_BENCH_PORT
  * picks vite's port (default 5175).
  * UI_BENCH_ARGS="…" replaces chromium's flags. The default, --disable-gpu (as the e2e
- * specs run), composites in software: each WebGL frame is read back on the main
- * thread, so a slow software draw shows as a long task there. Without it
+ * specs run), composites in software: a WebGL canvas drawn on the page is read back
+ * on the main thread (a slow software draw showed as a long task there, and
+ * `readbacks` counts them); the view's worker draws on OffscreenCanvas, read back
+ * on that worker's thread instead. Without it
  * (UI_BENCH_ARGS="--no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader
  * --ignore-gpu-blocklist"), WebGL and compositing run in the GPU process, as in a
- * desktop Chrome with a GPU: the main thread stays free and fps shows the software
- * renderer's speed instead.
+ * desktop Chrome with a GPU: fps shows the software renderer's speed instead.
  * Prints one JSON object as its last line.
  */
 import { chromium } from '@playwright/test';
