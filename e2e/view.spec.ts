@@ -37,6 +37,8 @@ async function lockedPixels(page: Page): Promise<number> {
 
 test('the locked path is visible; the top view pans; another machine drops the old job', async ({ page }) => {
   await openWorkbench(page);
+  // At rest nothing is locked ahead: no transmitted colour on screen (the legend's swatch is masked).
+  expect(await lockedPixels(page)).toBe(0);
   await startJob(page, { pattern: 'spiral', segments: 400, size: 60, speed: 40 });
   await expect.poll(() => dataNumber(page, 'job-progress', 'data-done'), { timeout: 30_000 }).toBeGreaterThan(20);
   // A wide orange path from the tool on (a few ms of motion: often shorter than the tool's ring), and its length in the legend.
