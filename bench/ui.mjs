@@ -150,8 +150,9 @@ async function stopTrace() {
     readbacks: readbacks.length,
     longestReadback: readbacks.length ? Math.max(...readbacks) : 0,
     longest: Math.max(...tasks.map((t) => t.wall)),
-    longestCpu: Math.max(...tasks.map((t) => t.cpu)),
-    cpuTotal: tasks.reduce((sum, t) => sum + t.cpu, 0),
+    // A task the trace gives no thread time (rare: one cut by the trace's start) is left out of these two.
+    longestCpu: Math.max(...tasks.map((t) => t.cpu).filter(Number.isFinite)),
+    cpuTotal: tasks.reduce((sum, t) => sum + (Number.isFinite(t.cpu) ? t.cpu : 0), 0),
     over50: tasks.filter((t) => t.wall > 50).length,
     tasks: tasks.length,
   };
