@@ -71,3 +71,16 @@ test('the locked path is visible; the top view pans; another machine drops the o
   expect(y1 - y0).toBeLessThan((x1 - x0) / 10);
   await screenshot(page, '10-one-axis-rail');
 });
+
+test('a browser that cannot draw the view off the main thread is told so, and the rest works', async ({ page }) => {
+  await page.addInitScript(() => {
+    delete (HTMLCanvasElement.prototype as unknown as { transferControlToOffscreen?: unknown }).transferControlToOffscreen;
+  });
+  await openWorkbench(page);
+  await expect(page.locator('[data-testid=log-entry][data-code=VIEW]')).toContainText('OffscreenCanvas');
+  // The machine still jogs; only the drawing is missing.
+  const x0 = await dataNumber(page, 'pos-x');
+  await page.getByTestId('step-10').click();
+  await page.getByTestId('jog-x+').click();
+  await expect.poll(() => dataNumber(page, 'pos-x')).toBeCloseTo(x0 + 10, 6);
+});

@@ -45,6 +45,9 @@ export class ViewClient {
     onReport: (stats: ViewStats) => void,
     onError: (message: string) => void,
   ) {
+    if (typeof canvas.transferControlToOffscreen !== 'function') {
+      throw new Error('This browser cannot hand a canvas to a worker (OffscreenCanvas), so the 3D view is not drawn. Use a current Chrome, Edge, Firefox or Safari (17 or later).');
+    }
     this.worker = new Worker(new URL('../view/viewWorker.ts', import.meta.url), { type: 'module', name: 'maxl-view' });
     this.worker.onmessage = (m: MessageEvent<ViewEvent>) => {
       const e = m.data;
