@@ -1,7 +1,8 @@
 /**
  * The view shows what a user needs: the locked (transmitted) path ahead of the
- * tool is visible, a drag pans the top view (it never tilts it), a one-axis rig is
- * a rail, and another machine does not show the last one's job.
+ * tool is visible, a drag pans the top view (it never tilts it) and orbits the 3D
+ * one, a one-axis rig is a rail, and another machine does not show the last one's
+ * job. The view draws in its own worker; its pointer input is forwarded there.
  */
 import type { Page } from '@playwright/test';
 import { expect, test } from './support/test.ts';
@@ -60,6 +61,20 @@ test('the locked path is visible; the top view pans; another machine drops the o
   expect(after.position[0]).toBeCloseTo(after.target[0], 6);
   expect(after.position[1]).toBeCloseTo(after.target[1], 6);
   expect(after.position[2] - after.target[2]).toBeCloseTo(before.position[2] - before.target[2], 6);
+
+  // In 3D the same drag orbits: the camera turns about the target, at the same distance.
+  await page.getByTestId('orbit-view').click();
+  const before3d = await page.evaluate(() => (window as unknown as ViewHook).maxlView.cameraPose);
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width / 2 + 120, box.y + box.height / 2 + 60, { steps: 8 });
+  await page.mouse.up();
+  const after3d = await page.evaluate(() => (window as unknown as ViewHook).maxlView.cameraPose);
+  const offset = (p: { position: number[]; target: number[] }) => p.position.map((v, i) => v - p.target[i]);
+  for (let i = 0; i < 3; i++) expect(after3d.target[i]).toBeCloseTo(before3d.target[i], 6);
+  expect(Math.hypot(...offset(after3d))).toBeCloseTo(Math.hypot(...offset(before3d)), 3);
+  expect(Math.hypot(...offset(after3d).map((v, i) => v - offset(before3d)[i]))).toBeGreaterThan(1);
+  await page.getByTestId('top-view').click();
 
   // Another machine: the one-axis rig. No trace of the last job; its travel is a rail.
   await page.getByTestId('machine-menu').click();
