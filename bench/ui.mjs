@@ -27,7 +27,9 @@
  *   showMillionLongestTaskMs, showMillionLongestAnimationFrameMs  the same two
  *                   figures while the million-segment job is shown
  *   maxFrameGapMs   the longest gap between animation frames meanwhile
- *   fps             animation frames per second meanwhile
+ *   fps             animation frames per second meanwhile (the page's)
+ *   viewDrawsPerSecond  draws of the 3D scene per second meanwhile (the view's
+ *                   `stats.renders`; the tool's overlay is drawn every frame besides)
  *   streamedSegments  segments the machine finished in the measured window
  *   jogBrakeLatencyMs, jogRestLatencyMs  hold-to-jog: from the key's release to braking, and to rest
  *
@@ -176,9 +178,11 @@ await page.waitForFunction(() => window.maxlWorkbench.job?.phase === 'running' &
 await startTrace();
 await resetInstruments();
 const done0 = await page.evaluate(() => window.maxlWorkbench.job.doneSegments);
+const renders0 = await page.evaluate(() => window.maxlView.stats.renders);
 if (full) await page.waitForFunction(() => window.maxlWorkbench.job?.phase !== 'running', null, { timeout: 0 });
 else await delay(seconds * 1000);
 const stream = { ...(await readInstruments()), ...(await stopTrace()) };
+const renders1 = await page.evaluate(() => window.maxlView.stats.renders);
 const job = await page.evaluate(() => window.maxlWorkbench.job);
 const errors = await page.evaluate(() => window.maxlWorkbench.log.filter((e) => e.level === 'error').map((e) => `${e.code}: ${e.message.split('\n')[0]}`));
 console.error(`[ui] main thread while streaming: ${stream.tasks} tasks, longest ${stream.longest.toFixed(1)} ms (most CPU in one task ${stream.longestCpu.toFixed(1)} ms), ${stream.over50} over 50 ms, ${stream.readbacks} WebGL read-backs (longest ${stream.longestReadback.toFixed(1)} ms); longest animation frame ${stream.loaf.duration.toFixed(0)} ms (${stream.loaf.work || 'none over 50 ms'})`);
@@ -258,6 +262,7 @@ const result = {
   longestAnimationFrameWork: stream.loaf.work,
   maxFrameGapMs: Math.round(stream.maxGap * 10) / 10,
   fps: Math.round(stream.fps * 10) / 10,
+  viewDrawsPerSecond: Math.round(((renders1 - renders0) / stream.elapsed) * 10) / 10,
   showMillionMs: Math.round(showMillionMs),
   showMillionLongestTaskMs: Math.round(million.longest * 10) / 10,
   showMillionLongestTaskCpuMs: Math.round(million.longestCpu * 10) / 10,

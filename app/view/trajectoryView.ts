@@ -27,6 +27,9 @@ import { WorkArea } from './workArea.ts';
 
 export type { CameraMode };
 
+/** ms: at most 20 draws a second of streaming content on a software renderer. */
+const SOFTWARE_MIN_DRAW_INTERVAL_MS = 50;
+
 export class TrajectoryView {
   readonly renderer: THREE.WebGLRenderer;
   private readonly scene = new THREE.Scene();
@@ -44,7 +47,10 @@ export class TrajectoryView {
   private frameHandle = 0;
   /** ms a scene draw is allowed to wait for, after the last one, while content streams. */
   private drawInterval = 0;
+  /** ms: the least time between draws of streaming content (a software renderer's floor). */
+  private readonly minDrawInterval: number;
   private lastDraw = -Infinity;
+  private urgent = false;
   private measuring = false;
   private width = 1;
   private height = 1;
@@ -63,7 +69,15 @@ export class TrajectoryView {
     // A software renderer (no GPU: SwiftShader, llvmpipe) draws every pixel on the CPU,
     // and with software compositing the page waits for each frame: draw it at 3/4 of
     // the CSS pixels there. A GPU gets the display's full resolution.
-    this.renderer.setPixelRatio(softwareRenderer(this.renderer.getContext()) ? 0.75 : Math.min(2, devicePixelRatio));
+    const software = softwareRenderer(this.renderer.getContext());
+    this.renderer.setPixelRatio(software ? 0.75 : Math.min(2, devicePixelRatio));
+    // In a worker, a draw no longer holds up the page, so nothing paces it any more but
+    // this: a software renderer spends CPU time on every pixel of every draw (and on
+    // reading it back), which the core's worker and the page share on a small machine.
+    // While a job streams the paths change every frame; they are redrawn at most 20
+    // times a second there (the tool and the locked-ahead path, on the overlay, still
+    // move every frame; camera moves still draw at once).
+    this.minDrawInterval = software ? SOFTWARE_MIN_DRAW_INTERVAL_MS : 0;
     this.scene.background = new THREE.Color(SCENE_COLORS.background);
     this.scene.add(
       this.workArea.group,
@@ -191,13 +205,16 @@ export class TrajectoryView {
    */
   requestRender(now = false): void {
     this.dirty = true;
+    // A camera move while a streaming draw waits out its interval takes the next frame.
+    if (now) this.urgent = true;
     if (this.frameHandle) return;
     const tick = () => {
       this.frameHandle = 0;
-      if (!now && performance.now() - this.lastDraw < this.drawInterval) {
+      if (!this.urgent && performance.now() - this.lastDraw < this.drawInterval) {
         this.frameHandle = requestAnimationFrame(tick);
         return;
       }
+      this.urgent = false;
       this.renderNow();
     };
     this.frameHandle = requestAnimationFrame(tick);
@@ -217,7 +234,7 @@ export class TrajectoryView {
       requestAnimationFrame(() => {
         this.measuring = false;
         const cost = performance.now() - start;
-        this.drawInterval = cost > 40 ? Math.min(3000, 4 * cost) : 0;
+        this.drawInterval = Math.max(this.minDrawInterval, cost > 40 ? Math.min(3000, 4 * cost) : 0);
       });
     }
   }
