@@ -29,6 +29,8 @@ export type { CameraMode };
 
 /** ms: at most 20 draws a second of streaming content on a software renderer. */
 const SOFTWARE_MIN_DRAW_INTERVAL_MS = 50;
+/** ms: the tool's overlay at most 30 times a second there. */
+const SOFTWARE_MIN_OVERLAY_INTERVAL_MS = 33;
 
 export class TrajectoryView {
   readonly renderer: THREE.WebGLRenderer;
@@ -50,6 +52,10 @@ export class TrajectoryView {
   /** ms: the least time between draws of streaming content (a software renderer's floor). */
   private readonly minDrawInterval: number;
   private lastDraw = -Infinity;
+  private overlayHandle = 0;
+  private lastOverlay = -Infinity;
+  /** ms: the least time between overlay draws while the tool moves (a software renderer's floor). */
+  private readonly minOverlayInterval: number;
   private urgent = false;
   private measuring = false;
   private width = 1;
@@ -78,6 +84,7 @@ export class TrajectoryView {
     // times a second there (the tool and the locked-ahead path, on the overlay, still
     // move every frame; camera moves still draw at once).
     this.minDrawInterval = software ? SOFTWARE_MIN_DRAW_INTERVAL_MS : 0;
+    this.minOverlayInterval = software ? SOFTWARE_MIN_OVERLAY_INTERVAL_MS : 0;
     this.scene.background = new THREE.Color(SCENE_COLORS.background);
     this.scene.add(
       this.workArea.group,
@@ -146,8 +153,9 @@ export class TrajectoryView {
     if (s.queue && s.queueStates) this.queue.set(s.queue, s.queueStates);
     this.preview.setFed(s.jobFed);
     const p = s.position;
+    const moved = this.toolPosition.x !== (p[0] ?? 0) || this.toolPosition.y !== (p[1] ?? 0) || this.toolPosition.z !== (p[2] ?? 0);
     this.toolPosition.set(p[0] ?? 0, p[1] ?? 0, p[2] ?? 0);
-    this.drawOverlay();
+    if (moved || s.locked.length > 0 || historical !== this.locked.historicalSegments) this.requestOverlay();
     if (s.locked.length > 0 || s.queue || historical !== this.locked.historicalSegments) this.requestRender();
   }
 
@@ -246,12 +254,32 @@ export class TrajectoryView {
     this.preview.setScale(this.height / Math.max(visibleHeight, 1e-9));
   }
 
+  /**
+   * Draws the overlay (the tool, the locked-ahead path) at the next animation frame,
+   * once however many snapshots came, and on a software renderer at most 30 times a
+   * second: each overlay frame is composited in software too.
+   */
+  private requestOverlay(): void {
+    if (this.overlayHandle) return;
+    const tick = () => {
+      this.overlayHandle = 0;
+      if (performance.now() - this.lastOverlay < this.minOverlayInterval) {
+        this.overlayHandle = requestAnimationFrame(tick);
+        return;
+      }
+      this.drawOverlay();
+    };
+    this.overlayHandle = requestAnimationFrame(tick);
+  }
+
   private drawOverlay(): void {
+    this.lastOverlay = performance.now();
     this.overlay.draw(this.camera, this.toolPosition, this.originPosition, this.locked.transmittedVertices(), this.width, this.height);
   }
 
   dispose(): void {
     cancelAnimationFrame(this.frameHandle);
+    cancelAnimationFrame(this.overlayHandle);
     this.controls.dispose();
     this.renderer.dispose();
   }
