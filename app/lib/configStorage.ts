@@ -3,6 +3,7 @@
  * for real boards, plus which machine was open last; and JSON export and import.
  */
 import type { MachineConfig } from '../worker/protocol.ts';
+import { downloadText } from './download.ts';
 
 const KEY = 'maxl.workbench.v1';
 
@@ -53,13 +54,7 @@ export function forgetConfig(machine: string): void {
 }
 
 export function exportConfig(config: MachineConfig, name: string): void {
-  const blob = new Blob([JSON.stringify(config, null, 2)], { type: 'application/json' });
-  const url = URL.createObjectURL(blob);
-  const a = document.createElement('a');
-  a.href = url;
-  a.download = `${name}.maxl.json`;
-  a.click();
-  setTimeout(() => URL.revokeObjectURL(url), 1000);
+  downloadText(JSON.stringify(config, null, 2), `${name}.maxl.json`, 'application/json');
 }
 
 /** Parses an imported file; throws with words a user can act on. */

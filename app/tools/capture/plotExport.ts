@@ -3,20 +3,7 @@
  * attributes only (no stylesheet), so the SVG serialised as it is looks the same
  * anywhere; the PNG is that SVG drawn on a canvas at twice its size.
  */
-export function download(blob: Blob, name: string): void {
-  const url = URL.createObjectURL(blob);
-  const a = document.createElement('a');
-  a.href = url;
-  a.download = name;
-  document.body.append(a);
-  a.click();
-  a.remove();
-  setTimeout(() => URL.revokeObjectURL(url), 10_000);
-}
-
-export function downloadText(text: string, name: string, type: string): void {
-  download(new Blob([text], { type }), name);
-}
+export { download, downloadText } from '../../lib/download.ts';
 
 /** The SVG's markup, standalone, with its viewBox size as width and height. */
 export function svgMarkup(svg: SVGSVGElement): string {

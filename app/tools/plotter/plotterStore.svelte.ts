@@ -6,6 +6,7 @@
  * state (a stroke grows by hundreds of points a second): `version` ticks when they
  * change and the bed view redraws on its next animation frame.
  */
+import { downloadText } from '../../lib/download.ts';
 import type { WorkbenchStore } from '../../lib/workbench.svelte.ts';
 import type { WorkerEvent } from '../../worker/protocol.ts';
 import { DEFAULT_TOLERANCE_MM } from './penDefaults.ts';
@@ -149,7 +150,7 @@ export class PlotterStore {
         this.version++;
         break;
       case 'draw-svg':
-        download(`maxl-as-${e.kind}.svg`, e.svg);
+        downloadText(e.svg, `maxl-as-${e.kind}.svg`, 'image/svg+xml');
         this.wb.note('info', 'SAVED', `Saved ${e.strokes} stroke${e.strokes === 1 ? '' : 's'} as ${e.kind} (maxl-as-${e.kind}.svg).`);
         break;
       case 'draw-truth': {
@@ -172,15 +173,4 @@ export class PlotterStore {
     }
     this.version++;
   }
-}
-
-function download(name: string, text: string): void {
-  const url = URL.createObjectURL(new Blob([text], { type: 'image/svg+xml' }));
-  const a = document.createElement('a');
-  a.href = url;
-  a.download = name;
-  document.body.appendChild(a);
-  a.click();
-  a.remove();
-  setTimeout(() => URL.revokeObjectURL(url), 10_000);
 }
