@@ -39,13 +39,8 @@ export class ToolOverlay {
 
   /** The tool: a ring, so that the locked path starting inside it stays visible. */
   private ring(camera: THREE.Camera, p: THREE.Vector3, width: number, height: number, r: number, color: string): void {
-    const s = this.v.copy(p).project(camera);
-    if (s.z < -1 || s.z > 1) return;
-    const x = ((s.x + 1) / 2) * width;
-    const y = ((1 - s.y) / 2) * height;
+    if (!this.circle(camera, p, width, height, r)) return;
     const g = this.g;
-    g.beginPath();
-    g.arc(x, y, r, 0, Math.PI * 2);
     g.lineWidth = 6;
     g.strokeStyle = 'rgba(255,255,255,0.9)';
     g.stroke();
@@ -81,17 +76,21 @@ export class ToolOverlay {
   }
 
   private dot(camera: THREE.Camera, p: THREE.Vector3, width: number, height: number, r: number, color: string): void {
-    const s = this.v.copy(p).project(camera);
-    if (s.z < -1 || s.z > 1) return;
-    const x = ((s.x + 1) / 2) * width;
-    const y = ((1 - s.y) / 2) * height;
+    if (!this.circle(camera, p, width, height, r)) return;
     const g = this.g;
-    g.beginPath();
-    g.arc(x, y, r, 0, Math.PI * 2);
     g.fillStyle = color;
     g.fill();
     g.lineWidth = 2;
     g.strokeStyle = 'rgba(255,255,255,0.9)';
     g.stroke();
+  }
+
+  /** Begins a circle path of radius r (px) around p on screen; false if p is outside the view's depth. */
+  private circle(camera: THREE.Camera, p: THREE.Vector3, width: number, height: number, r: number): boolean {
+    const s = this.v.copy(p).project(camera);
+    if (s.z < -1 || s.z > 1) return false;
+    this.g.beginPath();
+    this.g.arc(((s.x + 1) / 2) * width, ((1 - s.y) / 2) * height, r, 0, Math.PI * 2);
+    return true;
   }
 }
