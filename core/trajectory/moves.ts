@@ -71,13 +71,23 @@ export class ValidatedMove {
   readonly dwell_s: number | null;
   /** mm/s², a cap on this move's acceleration (as Klipper's M204); Infinity for the machine's limits. */
   readonly maxAcceleration: number;
+  /** The actuators at `end`, computed once by validation (null for a dwell). */
+  readonly actuatorEnd: number[] | null;
 
-  constructor(end: number[], maxVelocity: number, events: ResolvedEventSpec[], dwell_s: number | null = null, maxAcceleration = Infinity) {
+  constructor(
+    end: number[],
+    maxVelocity: number,
+    events: ResolvedEventSpec[],
+    dwell_s: number | null = null,
+    maxAcceleration = Infinity,
+    actuatorEnd: number[] | null = null,
+  ) {
     this.end = end;
     this.maxVelocity = maxVelocity;
     this.events = events;
     this.dwell_s = dwell_s;
     this.maxAcceleration = maxAcceleration;
+    this.actuatorEnd = actuatorEnd;
   }
 }
 
@@ -96,16 +106,16 @@ export const TRACK_POSITION_LIMIT_MM = 32_767;
  * soft limits), beyond the wire's range. Actuators are linear between the ends of
  * a segment of a linear transform, so checking the ends covers the whole segment.
  * The transforms run here too, so a function transform that throws or gives a
- * non-number is refused before anything is queued.
+ * non-number is refused before anything is queued; the actuators it returns are
+ * kept with the move, so making its last segment does not compute them again.
  */
-function checkTrackRange(config: ResolvedConfig, end: readonly number[]): void {
+function checkTrackRange(config: ResolvedConfig, end: readonly number[]): number[] {
   const axes = config.motionAxes;
   for (let i = 0; i < axes.length; i++) {
     if (Math.abs(end[i]) > TRACK_POSITION_LIMIT_MM) {
       throw new MaxlError('MOVE_INVALID', `${axes[i]} = ${end[i]} mm is beyond the ±${TRACK_POSITION_LIMIT_MM} mm a position track can carry`, `endPosition.${axes[i]}`);
     }
   }
-  if (config.transforms.length === 0) return;
   const actuators = actuatorPosition(config.transforms, end);
   for (let j = 0; j < actuators.length; j++) {
     if (Math.abs(actuators[j]) > TRACK_POSITION_LIMIT_MM) {
@@ -116,6 +126,7 @@ function checkTrackRange(config: ResolvedConfig, end: readonly number[]): void {
       );
     }
   }
+  return actuators;
 }
 
 /**
@@ -179,7 +190,7 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
       );
     }
   }
-  checkTrackRange(config, end);
+  const actuatorEnd = checkTrackRange(config, end);
   let maxVelocity = Infinity;
   if (move.maxVelocity !== undefined) {
     maxVelocity = finite('maxVelocity', move.maxVelocity);
@@ -190,7 +201,7 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
     maxAcceleration = finite('maxAcceleration', move.maxAcceleration);
     if (maxAcceleration <= 0) throw new MaxlError('MOVE_INVALID', 'must be positive (mm/s²)', 'maxAcceleration');
   }
-  return new ValidatedMove(end, maxVelocity, resolveMoveEvents(move.eventChannels, config.eventChannels), null, maxAcceleration);
+  return new ValidatedMove(end, maxVelocity, resolveMoveEvents(move.eventChannels, config.eventChannels), null, maxAcceleration, actuatorEnd);
 }
 
 /** A dwell holds wherever the path is: it takes no end position and no speed, and lasts 0 to MAX_DWELL_S s. */
@@ -314,7 +325,7 @@ export function segmentsForMove(
     const end = last ? move.end : p0.map((v, i) => v + (move.end[i] - v) * f1);
     const length = (f1 - fractions[k]) * total;
     const cruise2 = floorCruise2(moveCruise2, length, minDuration_s);
-    const a1 = actuatorPosition(config.transforms, end);
+    const a1 = last && move.actuatorEnd !== null ? move.actuatorEnd : actuatorPosition(config.transforms, end);
     // Within one move all pieces share the direction; only the first meets a corner.
     const junction2 = prevUnit === null ? 0 : k === 0 ? junctionSpeed2(prevUnit, unit, limits) : Infinity;
     const maxEntry2 = Math.min(junction2, cruise2, prevUnit === null ? 0 : prevCruise2);
