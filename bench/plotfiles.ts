@@ -27,7 +27,7 @@ import type { Segment } from '../core/trajectory/segment.ts';
 import type { PenSettings } from '../app/tools/plotter/penSequence.ts';
 import { arrange, DEFAULT_ARRANGEMENT, type Arrangement } from '../app/tools/plotter/files/arrange.ts';
 import { importGcode } from '../app/tools/plotter/files/gcodeImport.ts';
-import { hausdorff } from '../app/tools/plotter/files/hausdorff.ts';
+import { hausdorff } from '../app/tools/plotter/geometry/hausdorff.ts';
 import { mergePaths, sortPaths } from '../app/tools/plotter/files/ordering.ts';
 import { pathFromPoints, travelLength, type PlotPath } from '../app/tools/plotter/files/paths.ts';
 import { plotJobMoves, plotTime } from '../app/tools/plotter/files/plotJob.ts';

@@ -13,7 +13,7 @@ import type { Page } from '@playwright/test';
 import { expect, test } from './support/test.ts';
 import { arrange, DEFAULT_ARRANGEMENT } from '../app/tools/plotter/files/arrange.ts';
 import { DEFAULT_CHORD_TOLERANCE_MM } from '../app/tools/plotter/files/flatten.ts';
-import { hausdorff } from '../app/tools/plotter/files/hausdorff.ts';
+import { hausdorff } from '../app/tools/plotter/geometry/hausdorff.ts';
 import { importSvg } from '../app/tools/plotter/files/svgImport.ts';
 import { dataNumber, openWorkbench, screenshot } from './support/workbench.ts';
 

@@ -16,7 +16,7 @@ import type { PenSettings } from '../penSequence.ts';
 import { arrange, DEFAULT_ARRANGEMENT, type Arrangement } from './arrange.ts';
 import { DEFAULT_CHORD_TOLERANCE_MM } from './flatten.ts';
 import { importGcode } from './gcodeImport.ts';
-import { hausdorff } from './hausdorff.ts';
+import { hausdorff } from '../geometry/hausdorff.ts';
 import { mergePaths, sortPaths } from './ordering.ts';
 import type { Drawing } from './paths.ts';
 import { plotJobMoves, plotTime } from './plotJob.ts';

@@ -4,7 +4,7 @@
  * shapes, and bad files refused with the element and line named.
  */
 import { describe, expect, it } from 'vitest';
-import { hausdorff } from './hausdorff.ts';
+import { hausdorff } from '../geometry/hausdorff.ts';
 import { FileImportError, type PlotPath } from './paths.ts';
 import { importSvg } from './svgImport.ts';
 
