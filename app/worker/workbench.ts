@@ -369,6 +369,9 @@ export class Workbench {
       const words = errorWords(e.error);
       this.lastError = words.message;
       this.log('error', words.code, words.message);
+    } else if (e.type === 'streamStopped') {
+      // The machine rests on the path with nothing more to run, even if no device reports a stop.
+      this.stoppedByItself(`${e.device} refused a segment, and streaming stopped`);
     } else if (e.type === 'device') {
       this.devicesChanged = true;
       if (e.state === 'lost' || e.state === 'rebooted') {
@@ -389,15 +392,22 @@ export class Workbench {
       if (e.position) this.position = [...e.position];
       // A device braked to rest by itself (STOP sets 'halted' first): this author
       // cannot stream on from there, so the machine waits for Re-arm.
-      if (this.phase === 'ready') {
-        this.jobs.abort(`${e.device} stopped on the path`);
-        this.jog.reset();
-        this.toolOwner = null;
-        for (const tool of this.tools.values()) tool.stopped();
-        const why = this.lastError ? ` (${this.lastError})` : '';
-        this.setPhase('stopped', `${e.device} braked to rest on the path${why}. Press Re-arm to continue from where it stopped.`);
-      }
+      this.stoppedByItself(`${e.device} braked to rest on the path`);
     }
+  }
+
+  /**
+   * The stream stopped without STOP (a device braked, or refused a segment): this
+   * author cannot go on from there, so the job ends and the machine waits for Re-arm.
+   */
+  private stoppedByItself(what: string): void {
+    if (this.phase !== 'ready') return;
+    this.jobs.abort(what);
+    this.jog.reset();
+    this.toolOwner = null;
+    for (const tool of this.tools.values()) tool.stopped();
+    const why = this.lastError ? ` (${this.lastError})` : '';
+    this.setPhase('stopped', `${what[0].toUpperCase()}${what.slice(1)}${why}. Press Re-arm to continue from where it stopped.`);
   }
 
   private canJog(): boolean {

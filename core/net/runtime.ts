@@ -60,7 +60,9 @@ export type RuntimeEvent =
   | { type: 'samples'; device: string; samples: MessageOf<'SAMPLES'>; at_us: number }
   /** Batches of a sensor reader lost (with the samples they held), or a duplicate batch dropped. */
   | { type: 'sampleGap'; device: string; reader: string; gap: SampleGap }
-  | { type: 'idle' };
+  | { type: 'idle' }
+  /** Streaming stopped for good after a refusal: every device comes to rest on the path, with nothing more to run. */
+  | { type: 'streamStopped'; device: string };
 
 export interface RuntimeHost {
   config: ResolvedConfig;
@@ -273,6 +275,7 @@ export class Runtime {
         `${e.device}: ${e.message.type} ${what}. Streaming stopped: every device comes to rest on the path. Start the job again from there.`,
       ),
     });
+    this.emit({ type: 'streamStopped', device: e.device });
   }
   private streamStopped = false;
 
