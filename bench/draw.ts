@@ -57,6 +57,11 @@
  *                   author's clock: a negative value means the paced simulator
  *                   trailed the wall clock then (its worker was starved), which
  *                   makes every lag figure read short by as much
+ *   simulatorStalls  the paced simulator's wakes, while a stroke was drawn, that fired
+ *                   over 5 ms after their timer was due (worstLateMs: the worker's
+ *                   thread was busy or descheduled) or ran over 5 ms of timers
+ *                   (worstRunMs: the simulation itself was slow): core/time/
+ *                   pacedScheduler.ts PacingStall
  *   timingValid     whether both held (worst gap ≤ 3 samples, arrival ≥ −5 ms); when
  *                   false, the lag and stop figures measure the starved machine, not
  *                   live drawing (loadAverage says how busy the machine was)
@@ -236,6 +241,15 @@ if (truth.strokes.length !== STROKES.length || truth.ink.length !== STROKES.leng
 }
 
 const chromiumFigures = drawFigures(truth, STROKES, sent.find((x) => x.id === truth.strokes[STROKES.findIndex((k) => k.kind === 'fast')].id)?.points ?? NaN);
+// The paced simulator's wakes that came late or ran long while a stroke was drawn
+// (from its first point to 100 ms after its last): virtual time stood still then.
+const windows = truth.strokes.map((st) => [st.points[2], st.points[st.points.length - 1] + 100_000]);
+const inStrokes = truth.stalls.filter((x) => windows.some(([a, b]) => x.at_us >= a && x.at_us <= b));
+const simulatorStalls = {
+  count: inStrokes.length,
+  worstLateMs: round(Math.max(0, ...inStrokes.map((x) => x.late_ms))),
+  worstRunMs: round(Math.max(0, ...inStrokes.map((x) => x.run_ms))),
+};
 const timingValid = worstGapMs <= 3 * SAMPLE_MS && chromiumFigures.pointArrivalMs.min >= -5;
 console.error('[draw] the same strokes in virtual time');
 const virtual = await drawVirtual(STROKES);
@@ -247,6 +261,7 @@ const result = {
   bench: 'draw',
   ...chromiumFigures,
   pointerWorstGapMs: round(worstGapMs),
+  simulatorStalls,
   // The chromium timing figures mean what they say only if the pointer kept its pace
   // and the simulator kept up with the wall clock (pointerWorstGapMs, pointArrivalMs).
   timingValid,

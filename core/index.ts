@@ -42,7 +42,7 @@ export type { StreamerOptions } from './net/streamer.ts';
 export type { Scheduler, Timer } from './time/scheduler.ts';
 export { VirtualScheduler } from './time/virtualScheduler.ts';
 export { RealScheduler } from './time/realScheduler.ts';
-export { PacedScheduler } from './time/pacedScheduler.ts';
+export { PacedScheduler, type PacingStall } from './time/pacedScheduler.ts';
 export { SensorCapture } from './capture/sensorCapture.ts';
 export { captureToCsv, captureCsvColumns, type CaptureColumns } from './capture/csv.ts';
 export { formatSafeCsv, safeCell } from './capture/csvSafe.ts';

@@ -74,4 +74,15 @@ describe('PacedScheduler', () => {
     await passWall(5_000);
     expect(ran).toBe(false);
   });
+
+  it('logs a wake that fired late (the thread was starved), and not one on time', async () => {
+    const { s, passWall } = harness();
+    s.at(1_000, () => {});
+    await passWall(2_000); // 1 ms late: not a stall
+    expect(s.stalls).toEqual([]);
+    s.at(3_000, () => {});
+    await passWall(30_000); // the wake came 29 ms after its timer was due
+    expect(s.stalls).toHaveLength(1);
+    expect(s.stalls[0]).toMatchObject({ at_us: 3_000, late_ms: 29 });
+  });
 });

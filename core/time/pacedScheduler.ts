@@ -25,6 +25,24 @@ export interface PacedSchedulerOptions {
   wake?: (delay_ms: number, callback: () => void) => Timer;
 }
 
+/**
+ * A wake that fired more than STALL_MS after its timer was due, or whose timers took
+ * more than STALL_MS of wall time to run: meanwhile virtual time stood still while
+ * the wall clock ran on, so anything the page timestamped then lands on the author's
+ * clock ahead of the simulation by up to late_ms + run_ms.
+ */
+export interface PacingStall {
+  /** Virtual µs the wake ran timers from. */
+  at_us: number;
+  /** ms from the earliest due timer's time to the wake (wall). */
+  late_ms: number;
+  /** ms of wall time the wake spent running timers. */
+  run_ms: number;
+}
+
+const STALL_MS = 5;
+const STALLS_KEPT = 2000;
+
 export class PacedScheduler extends BaseScheduler {
   private readonly virtual: VirtualScheduler;
   private readonly wallNow: () => number;
@@ -36,6 +54,8 @@ export class PacedScheduler extends BaseScheduler {
   private wakeAt = Infinity;
   private running = false;
   private stopped = false;
+  /** The wakes that came late or ran long (newest STALLS_KEPT), for benches that must tell a starved thread from a slow machine. */
+  private readonly stallLog: PacingStall[] = [];
 
   constructor(options: PacedSchedulerOptions = {}) {
     super();
@@ -104,11 +124,25 @@ export class PacedScheduler extends BaseScheduler {
     this.wakeAt = Infinity;
     if (this.running || this.stopped) return;
     this.running = true;
+    const from_us = this.virtual.now();
+    const due = this.virtual.nextAt();
+    const start = this.wallTime();
     try {
-      await this.virtual.runUntil(Math.max(this.wallTime(), this.virtual.now()));
+      await this.virtual.runUntil(Math.max(start, from_us));
     } finally {
       this.running = false;
     }
+    const late_ms = due === Infinity ? 0 : Math.max(0, (start - due) / 1000);
+    const run_ms = (this.wallTime() - start) / 1000;
+    if (late_ms > STALL_MS || run_ms > STALL_MS) {
+      if (this.stallLog.length >= STALLS_KEPT) this.stallLog.shift();
+      this.stallLog.push({ at_us: Math.max(from_us, due === Infinity ? from_us : due), late_ms, run_ms });
+    }
     this.armWake();
+  }
+
+  /** The wakes that came late or ran long so far (oldest first; the newest 2000). */
+  get stalls(): readonly PacingStall[] {
+    return this.stallLog;
   }
 }

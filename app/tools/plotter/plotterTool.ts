@@ -240,6 +240,7 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand | FileCommand> 
       fedMoves: this.live.fedMoves,
       waitingMoves: status.waitingMoves,
       paced: this.ctx.scheduler instanceof PacedScheduler,
+      stalls: this.ctx.scheduler instanceof PacedScheduler ? this.ctx.scheduler.stalls : [],
     };
   }
 

@@ -11,6 +11,7 @@
  * pointer event's time as epoch ms (performance.timeOrigin + event.timeStamp), so
  * the worker can place each point on the author's clock.
  */
+import type { PacingStall } from '../../../core/index.ts';
 import type { PenSettings } from './penSequence.ts';
 
 export type PlotterCommand =
@@ -74,6 +75,8 @@ export interface DrawTruth {
   waitingMoves: number;
   /** The scheduler is paced (simulated machine): epoch ms ↔ author µs are exact. */
   paced: boolean;
+  /** On a paced machine, the wakes of its scheduler that came late or ran long (see PacingStall). */
+  stalls: readonly PacingStall[];
 }
 
 export type PlotterEvent =
