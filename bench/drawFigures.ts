@@ -64,7 +64,7 @@ export const round = (v: number, d = 1) => Math.round(v * 10 ** d) / 10 ** d;
 export function drawFigures(truth: Pick<DrawTruth, 'ink' | 'strokes' | 'lead_us' | 'limits' | 'tolerance_mm'>, specs: readonly StrokeSpec[], fastSent: number) {
   const smoothSpeed = specs.find((s) => s.kind === 'smooth')?.speed ?? NaN;
   const lags: number[] = [];
-  /** ms from a pointer event to the worker taking its point, on the author's clock (negative: the paced simulator trailed the wall clock). */
+  /** ms from a pointer event to the worker's drawer taking its point, on the author's clock (never negative: see app/tools/plotter/live/pointerTimeline.ts). */
   const arrivals: number[] = [];
   let stops = 0;
   const kept: number[] = [];

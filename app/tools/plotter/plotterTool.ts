@@ -18,6 +18,7 @@ import { FileJobs } from './files/fileJobs.ts';
 import type { FileCommand } from './files/protocol.ts';
 import { LiveDrawer } from './live/liveDrawer.ts';
 import { PlannedPen } from './live/plannedPen.ts';
+import { PointerTimeline } from './live/pointerTimeline.ts';
 import { SimulatedInk } from './live/simulatedInk.ts';
 import { DEFAULT_TOLERANCE_MM, penDefaults, penSettingsProblem } from './penDefaults.ts';
 import type { PenSettings } from './penSequence.ts';
@@ -37,6 +38,8 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand | FileCommand> 
   private statusChanged = true;
   private lastInk = 0;
   private readonly ink = new SimulatedInk();
+  /** Pointer input, released at the author time it was made (live/pointerTimeline.ts). */
+  private readonly pointer: PointerTimeline;
   /** Dev/test hook: each stroke's points on the author's clock, when each arrived, and how far the machine fell behind (docs/test-hooks.md). */
   private readonly received = new Map<number, { points: number[]; arrived: number[]; behindMax_mm: number; waitingMax: number }>();
 
@@ -45,6 +48,7 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand | FileCommand> 
 
   constructor(private readonly ctx: ToolContext) {
     this.files = new FileJobs(ctx);
+    this.pointer = new PointerTimeline(() => ctx.scheduler);
     this.live = new LiveDrawer({
       get maxl() {
         return ctx.maxl;
@@ -65,6 +69,7 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand | FileCommand> 
   }
 
   authorChanged(maxl: Maxl | null): void {
+    this.pointer.clear();
     this.files.authorChanged(maxl);
     this.live.attach(maxl);
     this.planned.attach(maxl);
@@ -73,6 +78,7 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand | FileCommand> 
   }
 
   stopped(): void {
+    this.pointer.clear();
     this.live.stopped();
   }
 
@@ -144,30 +150,28 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand | FileCommand> 
 
   private handleDraw(cmd: PlotterCommand): void {
     switch (cmd.type) {
-      case 'draw-start':
-        if (import.meta.env.DEV) this.received.set(cmd.id, { points: [cmd.x, cmd.y, this.authorTime(cmd.t)], arrived: [this.ctx.scheduler.now()], behindMax_mm: 0, waitingMax: 0 });
-        if (!this.live.start(cmd.id, [cmd.x, cmd.y], this.settings(), this.tolerance_mm)) this.received.delete(cmd.id);
-        this.statusChanged = true;
+      case 'draw-start': {
+        const t = this.authorTime(cmd.t);
+        this.pointer.push(t, () => {
+          if (import.meta.env.DEV) this.received.set(cmd.id, { points: [cmd.x, cmd.y, t], arrived: [this.ctx.scheduler.now()], behindMax_mm: 0, waitingMax: 0 });
+          if (!this.live.start(cmd.id, [cmd.x, cmd.y], this.settings(), this.tolerance_mm)) this.received.delete(cmd.id);
+          this.statusChanged = true;
+        });
         return;
+      }
       case 'draw-points': {
-        this.live.points(cmd.id, cmd.points, 3);
-        const record = import.meta.env.DEV ? this.received.get(cmd.id) : undefined;
-        if (record) {
-          const now = this.ctx.scheduler.now();
-          for (let i = 0; i + 2 < cmd.points.length; i += 3) {
-            record.points.push(cmd.points[i], cmd.points[i + 1], this.authorTime(cmd.points[i + 2]));
-            record.arrived.push(now);
-          }
-          const status = this.live.status();
-          record.behindMax_mm = Math.max(record.behindMax_mm, status.behind_mm);
-          record.waitingMax = Math.max(record.waitingMax, status.waitingMoves);
+        const p = cmd.points;
+        for (let i = 0; i + 2 < p.length; i += 3) {
+          const [x, y, t] = [p[i], p[i + 1], this.authorTime(p[i + 2])];
+          this.pointer.push(t, () => this.takePoint(cmd.id, x, y, t));
         }
-        this.statusChanged = true;
         return;
       }
       case 'draw-end':
-        this.live.end(cmd.id);
-        this.statusChanged = true;
+        this.pointer.push(NaN, () => {
+          this.live.end(cmd.id);
+          this.statusChanged = true;
+        });
         return;
       case 'draw-clear':
         this.received.clear();
@@ -183,6 +187,20 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand | FileCommand> 
         else this.ctx.log('error', 'WORKER', 'draw-truth is a development hook: this build has none.');
         return;
     }
+  }
+
+  /** One pointer point, at the author time it was made (`t`, µs). */
+  private takePoint(id: number, x: number, y: number, t: number): void {
+    this.live.points(id, [x, y]);
+    const record = import.meta.env.DEV ? this.received.get(id) : undefined;
+    if (record) {
+      record.points.push(x, y, t);
+      record.arrived.push(this.ctx.scheduler.now());
+      const status = this.live.status();
+      record.behindMax_mm = Math.max(record.behindMax_mm, status.behind_mm);
+      record.waitingMax = Math.max(record.waitingMax, status.waitingMoves);
+    }
+    this.statusChanged = true;
   }
 
   /** Author µs of a pointer event at epoch ms `t`: exact on a paced (simulated) machine, else by the wall clock now. */
