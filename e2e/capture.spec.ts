@@ -14,7 +14,7 @@ import { readFile } from 'node:fs/promises';
 import type { Page } from '@playwright/test';
 import { expect, test } from './support/test.ts';
 import { csvParse } from 'd3-dsv';
-import { openWorkbench, screenshot, SCREENSHOTS } from './support/workbench.ts';
+import { openWorkbench, screenshot, SCREENSHOTS, usePreset } from './support/workbench.ts';
 import { sampleTimeline, type TimedSegment } from '../core/trajectory/tracks.ts';
 import { analyseCapture } from '../core/capture/analysis.ts';
 
@@ -37,10 +37,7 @@ async function downloadText(page: Page, testId: string): Promise<string> {
 test('a resonance sweep: the plot, and a CSV whose rows, plan, stamps and peak hold', async ({ page }) => {
   test.setTimeout(150_000);
   await openWorkbench(page);
-  await page.getByTestId('machine-menu').click();
-  await page.getByTestId('preset-accelRig').click();
-  await expect(page.getByTestId('machine-menu')).toContainText('accelRig');
-  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await usePreset(page, 'accelRig');
 
   await page.getByTestId('tab-capture').click();
   await page.getByTestId('capture-kind').selectOption('sweep');
@@ -157,10 +154,7 @@ test('a resonance sweep: the plot, and a CSV whose rows, plan, stamps and peak h
 test('a capture cut short by Cancel, then by STOP, keeps what it captured', async ({ page }) => {
   test.setTimeout(120_000);
   await openWorkbench(page);
-  await page.getByTestId('machine-menu').click();
-  await page.getByTestId('preset-accelRig').click();
-  await expect(page.getByTestId('machine-menu')).toContainText('accelRig');
-  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await usePreset(page, 'accelRig');
   await page.getByTestId('tab-capture').click();
   const items = page.getByTestId('capture-item');
   const kept = await items.count();

@@ -15,7 +15,7 @@ import { arrange, DEFAULT_ARRANGEMENT } from '../app/tools/plotter/files/arrange
 import { DEFAULT_CHORD_TOLERANCE_MM } from '../app/tools/plotter/files/flatten.ts';
 import { hausdorff } from '../app/tools/plotter/geometry/hausdorff.ts';
 import { importSvg } from '../app/tools/plotter/files/svgImport.ts';
-import { dataNumber, openWorkbench, screenshot } from './support/workbench.ts';
+import { dataNumber, openWorkbench, screenshot, usePreset } from './support/workbench.ts';
 
 const SVG_FIXTURE = 'e2e/fixtures/plot-shapes.svg';
 const GCODE_FIXTURE = 'e2e/fixtures/plot-arcs.gcode';
@@ -24,10 +24,7 @@ const BED = { minX: 0, minY: 0, maxX: 125, maxY: 125 };
 
 async function useBlot(page: Page): Promise<void> {
   await openWorkbench(page);
-  await page.getByTestId('machine-menu').click();
-  await page.getByTestId('preset-blotPlotter').click();
-  await expect(page.getByTestId('machine-menu')).toContainText('blotPlotter');
-  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await usePreset(page, 'blotPlotter');
 }
 
 async function plotToCompletion(page: Page): Promise<{ elapsed_s: number }> {

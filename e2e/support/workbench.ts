@@ -13,6 +13,14 @@ export async function openWorkbench(page: Page, path = '/'): Promise<void> {
   await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
 }
 
+/** Switches to a simulated machine from the machine menu and waits until it is ready. */
+export async function usePreset(page: Page, presetId: string): Promise<void> {
+  await page.getByTestId('machine-menu').click();
+  await page.getByTestId(`preset-${presetId}`).click();
+  await expect(page.getByTestId('machine-menu')).toContainText(presetId);
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+}
+
 export async function screenshot(page: Page, name: string): Promise<void> {
   await page.screenshot({ path: `${SCREENSHOTS}/${name}.png` });
 }
