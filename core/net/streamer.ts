@@ -34,7 +34,8 @@ import type { Segment } from '../trajectory/segment.ts';
 import { evaluateTiming } from '../plan/phases.ts';
 import type { DeviceSession, SendResult } from './session.ts';
 import type { Message, MessageOf } from './messages.ts';
-import { geometryMessages, timingMessages, type PositionSlot } from './segmentEncoding.ts';
+import { geometryMessages, type PositionSlot } from './segmentEncoding.ts';
+import { timingForPath } from './timedPath.ts';
 import { MAX_PAYLOAD } from './protocol.ts';
 
 /** What one device reads of the trajectory, and how to reach it. */
@@ -407,30 +408,9 @@ export class Streamer {
   private timingFor(d: DeviceState, segs: Segment[]): Message[] {
     const clock = d.binding.session.clock.clock;
     if (!clock) return [];
-    const out: Message[] = [];
-    // Runs of contiguous segments share TIMING batches; a start after rest begins a new run.
-    let run: Segment[] = [];
-    let runStart = false;
-    const flush = () => {
-      if (run.length === 0) return;
-      const messages = timingMessages(run, clock, this.wireIds.get(run[0]) as number, runStart, this.stopDecel(), d.timedEnd ?? undefined);
-      d.timedEnd = messages.end ?? d.timedEnd;
-      out.push(...messages);
-      run.forEach((seg, k) => this.queueEvents(d, seg, messages.spans[k].length));
-      run = [];
-    };
-    for (const seg of segs) {
-      // Contiguous in author time: it starts exactly where the device's timed path ends.
-      const contiguous = d.timedEnd !== null && seg.startTime_us === d.timedEndAuthor;
-      if (run.length === 0 || !contiguous) {
-        flush();
-        runStart = !contiguous;
-      }
-      run.push(seg);
-      d.timedEndAuthor = seg.endTime_us;
-    }
-    flush();
-    return out;
+    const { messages, deviceLengths } = timingForPath(d, segs, clock, (seg) => this.wireIds.get(seg) as number, this.stopDecel());
+    segs.forEach((seg, k) => this.queueEvents(d, seg, deviceLengths[k]));
+    return messages;
   }
 
   /**
