@@ -267,14 +267,13 @@ export class Runtime {
     }
     if (this.streamStopped) return;
     this.streamStopped = true;
-    this.streamer?.stop();
-    this.emit({
-      type: 'error',
-      error: new MaxlError(
-        'DEVICE_REFUSED',
-        `${e.device}: ${e.message.type} ${what}. Streaming stopped: every device comes to rest on the path. Start the job again from there.`,
-      ),
-    });
+    const error = new MaxlError(
+      'DEVICE_REFUSED',
+      `${e.device}: ${e.message.type} ${what}. Streaming stopped: every device comes to rest on the path. Start the job again from there.`,
+    );
+    // Waits for the job's end (whenIdle) reject with the same error: it will not end.
+    this.streamer?.stop(error);
+    this.emit({ type: 'error', error });
     this.emit({ type: 'streamStopped', device: e.device });
   }
   private streamStopped = false;
@@ -286,7 +285,8 @@ export class Runtime {
       const position = seg ? seg.start.map((p, i) => p + seg.unit[i] * seg.length * s.sigma) : null;
       this.emit({ type: 'stopped', device: session.label, segmentId: seg?.id ?? null, sigma: s.sigma, position });
     }
-    if (state === 'braking' && !this.halted) {
+    // After a HALT or a refusal that stopped the stream, braking is what was asked for and was said.
+    if (state === 'braking' && !this.halted && !this.streamStopped) {
       this.emit({
         type: 'error',
         error: new MaxlError('LINK_LOST', `${session.label} ran out of timing and is braking along the path: the stream fell behind`),

@@ -116,7 +116,9 @@ export class Streamer {
   private running = false;
   /** While set, the streamer sends no timing for this segment or after it. */
   private holdAt: Segment | null = null;
-  private idleWaiters: Array<() => void> = [];
+  private idleWaiters: Array<{ resolve: () => void; reject: (reason: Error) => void }> = [];
+  /** Why streaming stopped for good, if it did (a refusal): whenIdle() rejects with it. */
+  private stopReason: Error | null = null;
 
   constructor(
     queue: TrajectoryQueue,
@@ -160,7 +162,17 @@ export class Streamer {
   }
 
   /** Stops sending anything more; devices finish their timed path and brake along their geometry. */
-  stop(): void {
+  /**
+   * Stops streaming for good. With a `reason` (the stream broke off mid-job), every
+   * wait for idle rejects with it now and later: the job will not run to its end.
+   */
+  stop(reason?: Error): void {
+    if (reason && !this.stopReason) {
+      this.stopReason = reason;
+      const waiters = this.idleWaiters;
+      this.idleWaiters = [];
+      for (const w of waiters) w.reject(reason);
+    }
     this.running = false;
     this.unsubscribe?.();
     this.tickTimer?.cancel();
@@ -177,15 +189,16 @@ export class Streamer {
 
   /** Resolves once the machine is idle (or held and at rest). */
   whenIdle(): Promise<void> {
+    if (this.stopReason) return Promise.reject(this.stopReason);
     if (this.idle) return Promise.resolve();
-    return new Promise((resolve) => this.idleWaiters.push(resolve));
+    return new Promise((resolve, reject) => this.idleWaiters.push({ resolve, reject }));
   }
 
   /** Brings the machine to rest on the path as soon as its limits allow, and holds there. */
   async pause(): Promise<void> {
     this.holdAt = this.queue.brakeToRest();
     this.schedulePump(0);
-    await this.whenIdle();
+    await this.untilIdleOrStopped();
   }
 
   /** Continues after a pause. */
@@ -201,7 +214,14 @@ export class Streamer {
     else if (this.queue.transmittedEnd_us <= this.scheduler.now()) this.queue.cancelAll();
     this.holdAt = null;
     this.schedulePump(0);
-    await this.whenIdle();
+    await this.untilIdleOrStopped();
+  }
+
+  /** Idle, or streaming stopped for good: either way the machine comes to rest and nothing more runs. */
+  private untilIdleOrStopped(): Promise<void> {
+    return this.whenIdle().catch((err: unknown) => {
+      if (err !== this.stopReason) throw err;
+    });
   }
 
   /** The segment a device numbers `wireId`, among those the devices hold. */
@@ -292,7 +312,7 @@ export class Streamer {
     if (this.idle) {
       const waiters = this.idleWaiters;
       this.idleWaiters = [];
-      for (const w of waiters) w();
+      for (const w of waiters) w.resolve();
       this.onEvent({ type: 'idle' });
     }
     // Keep pumping while anything runs or waits; queue events wake it otherwise.
