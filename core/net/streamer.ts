@@ -28,6 +28,7 @@
  * Edits to provisional segments (a cancel, a replace, a split) are followed on the
  * devices with REPLACE_TAIL and fresh geometry.
  */
+import { MaxlError } from '../errors.ts';
 import type { Scheduler, Timer } from '../time/scheduler.ts';
 import type { TrajectoryQueue, QueueEvent } from '../trajectory/queue.ts';
 import type { Segment } from '../trajectory/segment.ts';
@@ -83,6 +84,8 @@ export const DEFAULT_STREAMER: StreamerOptions = {
 export type StreamerEvent =
   | { type: 'conflict'; message: string }
   | { type: 'refused'; device: string; reason: string; detail: number; message: Message }
+  /** The pump could not go on: an event evaluator threw or returned a non-number while its segment was locked. */
+  | { type: 'failed'; error: MaxlError }
   | { type: 'idle' };
 
 interface DeviceState {
@@ -241,7 +244,25 @@ export class Streamer {
     });
   }
 
+  /**
+   * One pump, run from a timer: nothing it throws may escape into the scheduler (in
+   * the workbench, that would end the worker). A failure (an event evaluator that
+   * throws or returns a non-number, whose segment then stays queued, unlocked)
+   * stops the pump and is reported; the runtime then stops the stream for good, and
+   * every device brakes along the geometry it holds and rests on the path.
+   */
   private pump(): void {
+    try {
+      this.pumpOnce();
+    } catch (err) {
+      const error = err instanceof MaxlError ? err : new MaxlError('STREAM_FAILED', `streaming failed: ${err instanceof Error ? err.message : String(err)}`);
+      this.tickTimer?.cancel();
+      this.tickTimer = null;
+      this.onEvent({ type: 'failed', error });
+    }
+  }
+
+  private pumpOnce(): void {
     if (!this.running) return;
     const now = this.scheduler.now();
     // Executed segments leave the devices' queues and the author's live queue.
