@@ -18,6 +18,8 @@ export type MaxlErrorCode =
   | 'LINK_LOST'
   | 'DEVICE_REFUSED'
   | 'BUFFER_CONFLICT'
+  /** streaming broke off for a reason of the author's own (not a device's): a bug, said plainly rather than thrown from a timer */
+  | 'STREAM_FAILED'
   | 'NOT_STARTED';
 
 export class MaxlError extends Error {

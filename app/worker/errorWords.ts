@@ -13,6 +13,7 @@ const WHAT_TO_DO: Partial<Record<string, string>> = {
   BUFFER_CONFLICT: 'Lower the job’s speed or join its tiny segments into longer ones, then run it again.',
   SOFT_LIMIT: 'Jog or set the job inside the soft limits, or widen them in Configure → Axes.',
   DEVICE_REFUSED: 'If a segment came late, the computer or the link was too slow: close busy tabs or use a shorter USB cable, then run again.',
+  STREAM_FAILED: 'The machine was brought to rest on the path. This is a fault of the workbench itself: please report it with this log, then press Re-arm.',
   NOT_STARTED: 'The machine is not streaming yet: wait for “ready”, or fix the problem shown above the view.',
 };
 

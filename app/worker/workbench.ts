@@ -371,7 +371,7 @@ export class Workbench {
       this.log('error', words.code, words.message);
     } else if (e.type === 'streamStopped') {
       // The machine rests on the path with nothing more to run, even if no device reports a stop.
-      this.stoppedByItself(`${e.device} refused a segment, and streaming stopped`);
+      this.stoppedByItself(e.device ? `${e.device} refused a segment, and streaming stopped` : 'streaming stopped');
     } else if (e.type === 'device') {
       this.devicesChanged = true;
       if (e.state === 'lost' || e.state === 'rebooted') {

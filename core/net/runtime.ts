@@ -61,8 +61,12 @@ export type RuntimeEvent =
   /** Batches of a sensor reader lost (with the samples they held), or a duplicate batch dropped. */
   | { type: 'sampleGap'; device: string; reader: string; gap: SampleGap }
   | { type: 'idle' }
-  /** Streaming stopped for good after a refusal: every device comes to rest on the path, with nothing more to run. */
-  | { type: 'streamStopped'; device: string };
+  /**
+   * Streaming stopped for good after a refusal (by `device`) or a failure of the author's
+   * own (an event evaluator; device null), said by the `error` just before: every device
+   * comes to rest on the path, with nothing more to run.
+   */
+  | { type: 'streamStopped'; device: string | null };
 
 export interface RuntimeHost {
   config: ResolvedConfig;
@@ -249,6 +253,7 @@ export class Runtime {
   private onStreamer(e: StreamerEvent): void {
     if (e.type === 'conflict') this.emit({ type: 'error', error: new MaxlError('BUFFER_CONFLICT', e.message) });
     else if (e.type === 'refused') this.onRefused(e);
+    else if (e.type === 'failed') this.stopStream(null, e.error);
     else if (e.type === 'idle') this.emit({ type: 'idle' });
   }
 
@@ -266,16 +271,23 @@ export class Runtime {
       return;
     }
     if (this.streamStopped) return;
+    this.stopStream(
+      e.device,
+      new MaxlError('DEVICE_REFUSED', `${e.device}: ${e.message.type} ${what}. Streaming stopped: every device comes to rest on the path. Start the job again from there.`),
+    );
+  }
+
+  /**
+   * Streaming stops for good (once): no device gets more timing, so all run out of
+   * it together and brake along the geometry they hold, to rest on the path. One
+   * error says why; waits for the job's end (whenIdle) reject with it: it will not end.
+   */
+  private stopStream(device: string | null, error: MaxlError): void {
+    if (this.streamStopped) return;
     this.streamStopped = true;
-    this.streamer?.stop();
-    this.emit({
-      type: 'error',
-      error: new MaxlError(
-        'DEVICE_REFUSED',
-        `${e.device}: ${e.message.type} ${what}. Streaming stopped: every device comes to rest on the path. Start the job again from there.`,
-      ),
-    });
-    this.emit({ type: 'streamStopped', device: e.device });
+    this.streamer?.stop(error);
+    this.emit({ type: 'error', error });
+    this.emit({ type: 'streamStopped', device });
   }
   private streamStopped = false;
 
@@ -286,7 +298,8 @@ export class Runtime {
       const position = seg ? seg.start.map((p, i) => p + seg.unit[i] * seg.length * s.sigma) : null;
       this.emit({ type: 'stopped', device: session.label, segmentId: seg?.id ?? null, sigma: s.sigma, position });
     }
-    if (state === 'braking' && !this.halted) {
+    // After a HALT or a refusal that stopped the stream, braking is what was asked for and was said.
+    if (state === 'braking' && !this.halted && !this.streamStopped) {
       this.emit({
         type: 'error',
         error: new MaxlError('LINK_LOST', `${session.label} ran out of timing and is braking along the path: the stream fell behind`),

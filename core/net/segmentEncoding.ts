@@ -97,9 +97,22 @@ export const MAX_CRUISE_CORRECTION = 0.005;
  * the model's rate: the profile's shape is never distorted, which matters most
  * for a phase accelerating from rest, whose entry speed the device derives from
  * σ(end) = 1. Where the model has moved since (it is refitted every second), the
- * difference is absorbed a little at a time in cruise phases only, at most
- * MAX_CRUISE_CORRECTION of each, where stretching just changes the cruise speed by
- * as much. Boundaries are rounded from the exact chain, so rounding never builds up.
+ * difference is absorbed a little at a time in cruise phases only. Boundaries are
+ * rounded from the exact chain, so rounding never builds up.
+ *
+ * How much a cruise phase may absorb. The device knows only α and the durations,
+ * and solves ν0 = (1 − α·Q)/T from σ(T) = 1 (protocol §5). Stretching a cruise at
+ * speed v_c by `take` µs adds v_c·take to the distance, so the device lowers every
+ * speed of the segment by the same δv = v_c·take/T (mm/s, T its µs), its entry and
+ * exit speeds included; shrinking raises them. A segment that starts or ends at
+ * rest would then start or end at −δv, which the device refuses as MALFORMED
+ * (it allows only what whole-µs rounding explains), or at +δv, a jump from rest.
+ * So the change is capped at MAX_CRUISE_CORRECTION of the lower end speed:
+ *   |δv| ≤ MAX·min(v_e, v_x)  ⇔  |take| ≤ MAX·T·min(v_e, v_x)/v_c,
+ * and at MAX_CRUISE_CORRECTION of the cruise itself. A segment at rest at an end
+ * takes none; what is left is carried to the next one (it is recomputed from the
+ * model each time). A dwell (length 0) moves nothing, so its whole hold absorbs
+ * up to MAX_CRUISE_CORRECTION with no speed changing.
  */
 export function timingEntry(seg: EncodableSegment, clock: ClockMap, chainFrom?: number): { entry: TimingSegment; start: number; end: number } {
   const timing = seg.timing;
@@ -111,12 +124,14 @@ export function timingEntry(seg: EncodableSegment, clock: ClockMap, chainFrom?: 
   const boundaries = [Math.round(exact)];
   let shape = 0;
   let accel = 0;
+  const endSpeedShare = error === 0 ? 0 : cruiseCorrectionShare(seg.length, timing);
   for (let k = 0; k < phases; k++) {
     const o = k * PHASE_STRIDE;
     let duration = timing[o + 1] * 1e6 * clock.rate;
     const a = timing[o + 4];
     if (a === 0 && error !== 0) {
-      const room = duration * MAX_CRUISE_CORRECTION;
+      // room = MAX·min(cruise, T·min(v_e, v_x)/v_c), in device µs (see above)
+      const room = Math.min(duration, endSpeedShare * clock.rate * 1e6 / Math.max(timing[o + 3], Number.MIN_VALUE)) * MAX_CRUISE_CORRECTION;
       const take = Math.max(-room, Math.min(room, error));
       duration += take;
       error -= take;
@@ -134,9 +149,23 @@ export function timingEntry(seg: EncodableSegment, clock: ClockMap, chainFrom?: 
 }
 
 /**
+ * T·min(v_e, v_x) of a segment (author s · mm/s): how far its cruise phases may be
+ * stretched or shrunk, divided by MAX_CRUISE_CORRECTION and their speed (timingEntry).
+ * Infinite for a dwell, whose hold moves nothing.
+ */
+function cruiseCorrectionShare(length: number, timing: Timing): number {
+  if (length === 0) return Infinity;
+  const o = timing.length - PHASE_STRIDE;
+  const entry = timing[3];
+  const exit = timing[o + 3] + timing[o + 4] * timing[o + 1];
+  return (timing[o] + timing[o + 1]) * Math.max(0, Math.min(entry, exit));
+}
+
+/**
  * TIMING messages for consecutive, contiguous timed segments. The first carries its
- * start when `withStart` (after rest, or first of a session); otherwise it follows
- * the device's timed path, which ends at `startAt` (exact, unwrapped device µs).
+ * start when `withStart` (after rest, or first of a session), never before `startAt`;
+ * otherwise it follows the device's timed path, which ends at `startAt` (exact,
+ * unwrapped device µs).
  * The exact device end of the last one is returned in `end`. `stopDecel` (mm/s², in author
  * time) is how hard a device brakes along provisional geometry if no more timing
  * follows a message's last segment.
@@ -154,8 +183,13 @@ export function timingMessages(
   let size = 0;
   let chain = withStart ? undefined : startAt;
   segments.forEach((seg, i) => {
-    const from = chain;
-    const { entry, start, end } = timingEntry(seg, clock, chain);
+    // After rest, a run starts where the clock model puts its author start, but never
+    // before the device's timed path ends: the model may have moved back since that
+    // path was sent, and a start even 1 µs before its end overlaps it, which the device
+    // refuses (MALFORMED). The path ended at rest, so starting a little later is safe.
+    const fromRest = startAt !== undefined && clock.toDeviceExact(seg.startTime_us) < startAt ? startAt : undefined;
+    const from = chain ?? fromRest;
+    const { entry, start, end } = timingEntry(seg, clock, from);
     // Where the segment lies on the device's timeline: exact start, and its length in whole µs.
     const exactStart = from ?? clock.toDeviceExact(seg.startTime_us);
     out.spans.push({ start: exactStart, length: entry.durations.reduce((a, b) => a + b, 0) });

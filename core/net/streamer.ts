@@ -28,13 +28,15 @@
  * Edits to provisional segments (a cancel, a replace, a split) are followed on the
  * devices with REPLACE_TAIL and fresh geometry.
  */
+import { MaxlError } from '../errors.ts';
 import type { Scheduler, Timer } from '../time/scheduler.ts';
 import type { TrajectoryQueue, QueueEvent } from '../trajectory/queue.ts';
 import type { Segment } from '../trajectory/segment.ts';
 import { evaluateTiming } from '../plan/phases.ts';
 import type { DeviceSession, SendResult } from './session.ts';
 import type { Message, MessageOf } from './messages.ts';
-import { geometryMessages, timingMessages, type PositionSlot } from './segmentEncoding.ts';
+import { geometryMessages, type PositionSlot } from './segmentEncoding.ts';
+import { timingForPath } from './timedPath.ts';
 import { MAX_PAYLOAD } from './protocol.ts';
 
 /** What one device reads of the trajectory, and how to reach it. */
@@ -82,6 +84,8 @@ export const DEFAULT_STREAMER: StreamerOptions = {
 export type StreamerEvent =
   | { type: 'conflict'; message: string }
   | { type: 'refused'; device: string; reason: string; detail: number; message: Message }
+  /** The pump could not go on: an event evaluator threw or returned a non-number while its segment was locked. */
+  | { type: 'failed'; error: MaxlError }
   | { type: 'idle' };
 
 interface DeviceState {
@@ -115,7 +119,9 @@ export class Streamer {
   private running = false;
   /** While set, the streamer sends no timing for this segment or after it. */
   private holdAt: Segment | null = null;
-  private idleWaiters: Array<() => void> = [];
+  private idleWaiters: Array<{ resolve: () => void; reject: (reason: Error) => void }> = [];
+  /** Why streaming stopped for good, if it did (a refusal): whenIdle() rejects with it. */
+  private stopReason: Error | null = null;
 
   constructor(
     queue: TrajectoryQueue,
@@ -159,7 +165,17 @@ export class Streamer {
   }
 
   /** Stops sending anything more; devices finish their timed path and brake along their geometry. */
-  stop(): void {
+  /**
+   * Stops streaming for good. With a `reason` (the stream broke off mid-job), every
+   * wait for idle rejects with it now and later: the job will not run to its end.
+   */
+  stop(reason?: Error): void {
+    if (reason && !this.stopReason) {
+      this.stopReason = reason;
+      const waiters = this.idleWaiters;
+      this.idleWaiters = [];
+      for (const w of waiters) w.reject(reason);
+    }
     this.running = false;
     this.unsubscribe?.();
     this.tickTimer?.cancel();
@@ -176,15 +192,16 @@ export class Streamer {
 
   /** Resolves once the machine is idle (or held and at rest). */
   whenIdle(): Promise<void> {
+    if (this.stopReason) return Promise.reject(this.stopReason);
     if (this.idle) return Promise.resolve();
-    return new Promise((resolve) => this.idleWaiters.push(resolve));
+    return new Promise((resolve, reject) => this.idleWaiters.push({ resolve, reject }));
   }
 
   /** Brings the machine to rest on the path as soon as its limits allow, and holds there. */
   async pause(): Promise<void> {
     this.holdAt = this.queue.brakeToRest();
     this.schedulePump(0);
-    await this.whenIdle();
+    await this.untilIdleOrStopped();
   }
 
   /** Continues after a pause. */
@@ -200,7 +217,14 @@ export class Streamer {
     else if (this.queue.transmittedEnd_us <= this.scheduler.now()) this.queue.cancelAll();
     this.holdAt = null;
     this.schedulePump(0);
-    await this.whenIdle();
+    await this.untilIdleOrStopped();
+  }
+
+  /** Idle, or streaming stopped for good: either way the machine comes to rest and nothing more runs. */
+  private untilIdleOrStopped(): Promise<void> {
+    return this.whenIdle().catch((err: unknown) => {
+      if (err !== this.stopReason) throw err;
+    });
   }
 
   /** The segment a device numbers `wireId`, among those the devices hold. */
@@ -220,7 +244,25 @@ export class Streamer {
     });
   }
 
+  /**
+   * One pump, run from a timer: nothing it throws may escape into the scheduler (in
+   * the workbench, that would end the worker). A failure (an event evaluator that
+   * throws or returns a non-number, whose segment then stays queued, unlocked)
+   * stops the pump and is reported; the runtime then stops the stream for good, and
+   * every device brakes along the geometry it holds and rests on the path.
+   */
   private pump(): void {
+    try {
+      this.pumpOnce();
+    } catch (err) {
+      const error = err instanceof MaxlError ? err : new MaxlError('STREAM_FAILED', `streaming failed: ${err instanceof Error ? err.message : String(err)}`);
+      this.tickTimer?.cancel();
+      this.tickTimer = null;
+      this.onEvent({ type: 'failed', error });
+    }
+  }
+
+  private pumpOnce(): void {
     if (!this.running) return;
     const now = this.scheduler.now();
     // Executed segments leave the devices' queues and the author's live queue.
@@ -291,7 +333,7 @@ export class Streamer {
     if (this.idle) {
       const waiters = this.idleWaiters;
       this.idleWaiters = [];
-      for (const w of waiters) w();
+      for (const w of waiters) w.resolve();
       this.onEvent({ type: 'idle' });
     }
     // Keep pumping while anything runs or waits; queue events wake it otherwise.
@@ -407,30 +449,9 @@ export class Streamer {
   private timingFor(d: DeviceState, segs: Segment[]): Message[] {
     const clock = d.binding.session.clock.clock;
     if (!clock) return [];
-    const out: Message[] = [];
-    // Runs of contiguous segments share TIMING batches; a start after rest begins a new run.
-    let run: Segment[] = [];
-    let runStart = false;
-    const flush = () => {
-      if (run.length === 0) return;
-      const messages = timingMessages(run, clock, this.wireIds.get(run[0]) as number, runStart, this.stopDecel(), d.timedEnd ?? undefined);
-      d.timedEnd = messages.end ?? d.timedEnd;
-      out.push(...messages);
-      run.forEach((seg, k) => this.queueEvents(d, seg, messages.spans[k].length));
-      run = [];
-    };
-    for (const seg of segs) {
-      // Contiguous in author time: it starts exactly where the device's timed path ends.
-      const contiguous = d.timedEnd !== null && seg.startTime_us === d.timedEndAuthor;
-      if (run.length === 0 || !contiguous) {
-        flush();
-        runStart = !contiguous;
-      }
-      run.push(seg);
-      d.timedEndAuthor = seg.endTime_us;
-    }
-    flush();
-    return out;
+    const { messages, deviceLengths } = timingForPath(d, segs, clock, (seg) => this.wireIds.get(seg) as number, this.stopDecel());
+    segs.forEach((seg, k) => this.queueEvents(d, seg, deviceLengths[k]));
+    return messages;
   }
 
   /**
