@@ -45,6 +45,10 @@
  *                   moved ≥ 0.01 mm in 1 ms: slower than 2 mm/s for 5 ms is at rest),
  *                   between the tool passing the curve's second point and its
  *                   second-to-last
+ *   stopCauses      for each of those rests: when (ms into the stroke), and the pointer's
+ *                   largest gap between points and slowest arrival (pointArrivalMs) in
+ *                   the 100 ms before it: a rest after a pointer that paused is the
+ *                   input's, not the planner's
  *   inkErrorMm      Hausdorff distance between all strokes (the pointer points the
  *                   worker received, as polylines) and all the ink
  *   pointsDropped   for the fast stroke: points the page sent that the worker did not

@@ -50,6 +50,19 @@ function passTime(ink: number[], x: number, y: number, from: number): { t: numbe
   return { t: ink[3 * from + 2], i: from, d: best };
 }
 
+/** The pointer's largest gap between point stamps, and its slowest arrival, in the `window_us` before author time `t`. */
+function inputBefore(stroke: { points: number[]; arrived: number[] }, t: number, window_us: number): { inputGapMs: number; arrivalMaxMs: number } {
+  let gap = 0;
+  let arrival = 0;
+  for (let j = 1; j < stroke.points.length / 3; j++) {
+    const stamp = stroke.points[3 * j + 2];
+    if (stamp < t - window_us || stamp > t) continue;
+    gap = Math.max(gap, stamp - stroke.points[3 * j - 1]);
+    arrival = Math.max(arrival, stroke.arrived[j] - stamp);
+  }
+  return { inputGapMs: round(gap / 1000), arrivalMaxMs: round(arrival / 1000) };
+}
+
 export function percentile(sorted: number[], q: number): number {
   if (sorted.length === 0) return NaN;
   return sorted[Math.min(sorted.length - 1, Math.max(0, Math.ceil(q * sorted.length) - 1))];
@@ -67,6 +80,8 @@ export function drawFigures(truth: Pick<DrawTruth, 'ink' | 'strokes' | 'lead_us'
   /** ms from a pointer event to the worker's drawer taking its point, on the author's clock (never negative: see app/tools/plotter/live/pointerTimeline.ts). */
   const arrivals: number[] = [];
   let stops = 0;
+  /** For each rest inside a curve: when, and the pointer's largest gap and slowest arrival in the 100 ms before it. */
+  const stopCauses: Array<{ stroke: string; atMs: number; inputGapMs: number; arrivalMaxMs: number }> = [];
   const kept: number[] = [];
   for (const [k, spec] of specs.entries()) {
     if (spec.kind !== 'smooth') continue;
@@ -86,7 +101,10 @@ export function drawFigures(truth: Pick<DrawTruth, 'ink' | 'strokes' | 'lead_us'
     const tB = passes[passes.length - 2];
     for (let i = 1; i < ink.length / 3; i++) {
       const t = ink[3 * i + 2];
-      if (t > tA && t < tB && t - ink[3 * i - 1] > 5000) stops++;
+      if (t > tA && t < tB && t - ink[3 * i - 1] > 5000) {
+        stops++;
+        stopCauses.push({ stroke: spec.name, atMs: round((ink[3 * i - 1] - pts[2]) / 1000), ...inputBefore(truth.strokes[k], ink[3 * i - 1], 100_000) });
+      }
     }
     // The pointer's sampling interval after thinning.
     const thinner = new DistanceThinner(truth.tolerance_mm);
@@ -121,6 +139,7 @@ export function drawFigures(truth: Pick<DrawTruth, 'ink' | 'strokes' | 'lead_us'
     lagFloorTerms: { brakeMs_v_over_2a: round(brakeMs), leadMs_streamer: round(leadMs), samplingMs_pointer_after_thinning: round(sampling) },
     lagPoints: lags.length,
     stopsInsideStrokes: stops,
+    stopCauses,
     inkErrorMm: round(inkErrorMm, 3),
     pointsDropped,
     fastStroke: { pointsSent: fastSent, pointsReceived: fast.points.length / 3, behindMaxMm: round(fast.behindMax_mm), waitingMax: fast.waitingMax },
