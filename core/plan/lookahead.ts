@@ -102,6 +102,8 @@ export type FinalListener = (offset: number, entry2: number, exit2: number) => v
 export type ProvisionalListener = (offset: number, entry2: number, exit2: number) => void;
 
 const INITIAL_CAPACITY = 1024;
+/** The largest store made up front (48 MB); more blocks than that grow it as they come. */
+const MAX_INITIAL_CAPACITY = 1 << 20;
 
 export class LookaheadPlanner {
   // --- the block ring: block k at slot k & mask ---
@@ -133,8 +135,12 @@ export class LookaheadPlanner {
   private boundSetByEnd = false;
   private readonly onFinal: FinalListener | undefined;
 
-  constructor(onFinal?: FinalListener) {
+  /** `expected`: how many blocks the planner will hold at once, if known (planPath: all); the store grows past it anyway. */
+  constructor(expected: number, onFinal?: FinalListener) {
     this.onFinal = onFinal;
+    const wanted = Number.isFinite(expected) ? Math.min(Math.max(INITIAL_CAPACITY, expected), MAX_INITIAL_CAPACITY) : INITIAL_CAPACITY;
+    const capacity = 2 ** Math.ceil(Math.log2(wanted));
+    if (capacity !== INITIAL_CAPACITY) this.resize(capacity);
   }
 
   /** Unlocked blocks held. */
@@ -388,10 +394,14 @@ export class LookaheadPlanner {
     }
   }
 
-  /** Doubles the rings, keeping every block and candidate at its slot for the new mask. */
+  /** Doubles the rings. */
   private grow(): void {
+    this.resize(2 * (this.mask + 1));
+  }
+
+  /** Makes the rings `capacity` slots (a power of two), keeping every block and candidate at its slot for the new mask. */
+  private resize(capacity: number): void {
     const oldMask = this.mask;
-    const capacity = 2 * (oldMask + 1);
     const mask = capacity - 1;
     const move = (column: Float64Array<ArrayBuffer>, from: number, to: number): Float64Array<ArrayBuffer> => {
       const grown = new Float64Array(capacity);

@@ -114,6 +114,15 @@ export const TRAPEZOID_MAX_PHASES = 3;
 const scratch = new Float64Array(TRAPEZOID_MAX_PHASES * PHASE_STRIDE);
 
 /**
+ * timingDuration(trapezoidTiming(…)) without allocating: the same phases, so the
+ * same duration to the last bit (the last phase's start plus its duration).
+ */
+export function trapezoidDuration(length: number, entry2: number, exit2: number, cruise2: number, accel: number): number {
+  const o = (writeTrapezoid(scratch, 0, length, entry2, exit2, cruise2, accel) - 1) * PHASE_STRIDE;
+  return scratch[o] + scratch[o + 1];
+}
+
+/**
  * Writes trapezoidTiming's phases into `out` from offset o and returns how many
  * there are (1 to 3): for planners that keep timings in columns, allocating nothing.
  */

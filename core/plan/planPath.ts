@@ -19,7 +19,7 @@
 import { resolveLimits } from '../config/limits.ts';
 import type { LimitsConfig, ResolvedConfig } from '../config/types.ts';
 import { MaxlError } from '../errors.ts';
-import { PHASE_STRIDE, TRAPEZOID_MAX_PHASES, writeTrapezoid } from './phases.ts';
+import { trapezoidDuration } from './phases.ts';
 import { LookaheadPlanner } from './lookahead.ts';
 import { ColumnarPlannedPath, PathColumns, type PlannedPath } from './plannedPath.ts';
 import { dwellAccel, entryCap2, floorCruise2, lineAccel, lineCruise2, validateMove, ZERO_LENGTH_MM, type Move, type ValidatedMove } from '../trajectory/moves.ts';
@@ -76,7 +76,7 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
   const columns = new PathColumns(axisCount, moves.length, start);
   const vertices = columns.vertices;
   // Every block's final plan lands in its row (planPath never locks, so the offset is the row).
-  const planner = new LookaheadPlanner((row, entry2, exit2) => {
+  const planner = new LookaheadPlanner(moves.length, (row, entry2, exit2) => {
     columns.entry2s[row] = entry2;
     columns.exit2s[row] = exit2;
   });
@@ -131,23 +131,13 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
   planner.planToRest();
   columns.count = n;
 
-  // Timing: each row's trapezoid (or dwell) straight into the timing column, then start times.
-  const ROW = TRAPEZOID_MAX_PHASES * PHASE_STRIDE;
-  const timings = columns.timings;
+  // Each row's duration (its timing's, without making the timing), then the start times.
   let t = 0;
   for (let i = 0; i < n; i++) {
-    const o = i * ROW;
-    let phases = 1;
-    if (columns.dwells[i] === 1) {
-      // dwellTiming: one phase at rest lasting dwell_s.
-      timings[o + 1] = columns.dwellSeconds[i];
-    } else {
-      phases = writeTrapezoid(timings, o, columns.lengths[i], columns.entry2s[i], columns.exit2s[i], columns.cruise2s[i], columns.accels[i]);
-    }
-    columns.phaseCounts[i] = phases;
-    // timingDuration: the last phase's start plus its duration.
-    const last = o + (phases - 1) * PHASE_STRIDE;
-    const duration = timings[last] + timings[last + 1];
+    const duration =
+      columns.dwells[i] === 1
+        ? columns.dwellSeconds[i]
+        : trapezoidDuration(columns.lengths[i], columns.entry2s[i], columns.exit2s[i], columns.cruise2s[i], columns.accels[i]);
     columns.startTimes[i] = t;
     columns.durations[i] = duration;
     t += duration;

@@ -6,11 +6,13 @@
  * (and keeps them), for code that iterates the plan.
  *
  * Rows: segment i runs from vertex i to vertex i + 1 (a dwell's two vertices are the
- * same point), starts at startTimes[i] s and lasts durations[i] s; its timing is
- * phaseCounts[i] phases of PHASE_STRIDE numbers at timings[i·TRAPEZOID_MAX_PHASES·PHASE_STRIDE].
+ * same point), starts at startTimes[i] s and lasts durations[i] s. Its phases are
+ * not stored (18 numbers a row): they are made again from the row's length, speeds²
+ * and limits, by the functions the queue's segments use, when a sample or a segment
+ * object needs them.
  */
 import { MaxlError } from '../errors.ts';
-import { PHASE_STRIDE, TRAPEZOID_MAX_PHASES, type Phase } from './phases.ts';
+import { dwellTiming, phasesOf, trapezoidTiming, type Phase, type Timing } from './phases.ts';
 import { sampleTimeline, type TimedSegment, type TrajectorySample } from '../trajectory/tracks.ts';
 
 export interface PlannedSegment {
@@ -55,9 +57,6 @@ export interface PlannedPath {
   sample(t: number): PathSample;
 }
 
-/** Numbers of one timing row. */
-const ROW = TRAPEZOID_MAX_PHASES * PHASE_STRIDE;
-
 /** The columns planPath fills, one row per segment. */
 export class PathColumns {
   readonly axes: number;
@@ -75,8 +74,6 @@ export class PathColumns {
   dwellSeconds: Float64Array;
   startTimes: Float64Array;
   durations: Float64Array;
-  phaseCounts: Uint8Array;
-  timings: Float64Array;
 
   constructor(axes: number, capacity: number, start: readonly number[]) {
     this.axes = axes;
@@ -92,14 +89,13 @@ export class PathColumns {
     this.dwellSeconds = new Float64Array(n);
     this.startTimes = new Float64Array(n);
     this.durations = new Float64Array(n);
-    this.phaseCounts = new Uint8Array(n);
-    this.timings = new Float64Array(n * ROW);
   }
 
-  /** The timing of row i as the packed array Timing is (a copy). */
-  timingOf(i: number): number[] {
-    const o = i * ROW;
-    return Array.from(this.timings.subarray(o, o + this.phaseCounts[i] * PHASE_STRIDE));
+  /** Row i's timing, as Segment.time() makes it. */
+  timingOf(i: number): Timing {
+    return this.dwells[i] === 1
+      ? dwellTiming(this.dwellSeconds[i])
+      : trapezoidTiming(this.lengths[i], this.entry2s[i], this.exit2s[i], this.cruise2s[i], this.accels[i]);
   }
 
   vertex(i: number): number[] {
@@ -135,16 +131,10 @@ export class ColumnarPlannedPath implements PlannedPath {
   /** Segment i as an object (a new one each call). */
   segment(i: number): PlannedSegment {
     const c = this.columns;
-    const o = i * ROW;
-    const phases: Phase[] = [];
+    const phases: Phase[] = phasesOf(c.timingOf(i));
     let peak = 0;
-    for (let k = 0; k < c.phaseCounts[i]; k++) {
-      const p = o + k * PHASE_STRIDE;
-      const phase = { t0: c.timings[p], duration: c.timings[p + 1], s0: c.timings[p + 2], v0: c.timings[p + 3], a0: c.timings[p + 4], jerk: c.timings[p + 5] };
-      // Constant acceleration in each phase: the highest speed is at one of its ends.
-      peak = Math.max(peak, phase.v0, phase.v0 + phase.a0 * phase.duration);
-      phases.push(phase);
-    }
+    // Constant acceleration in each phase: the highest speed is at one of its ends.
+    for (const phase of phases) peak = Math.max(peak, phase.v0, phase.v0 + phase.a0 * phase.duration);
     const dwell = c.dwells[i] === 1;
     return {
       start: c.vertex(i),

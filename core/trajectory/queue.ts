@@ -42,6 +42,16 @@ export interface MoveReceipt {
 
 export const DEFAULT_QUEUE_CAPACITY = 512;
 
+/**
+ * The most untransmitted segments the queue takes for the lookahead's sake (beyond
+ * its capacity). 65 536 segments hold the 10.4 mm that braking from 250 mm/s at
+ * 3 000 mm/s² needs down to 0.16 µm per segment; on a finer path the plan brakes
+ * earlier than it must (slower, never unsafe). It bounds the memory a path of
+ * near-zero segments could take: about 0.6 kB a segment (segment objects and the
+ * planner's store), 40 MB at the bound.
+ */
+export const MAX_LOOKAHEAD_SEGMENTS = 65_536;
+
 /** The tracks of a segment that sets no event channel. */
 const NO_EVENTS: EventTrack[] = [];
 
@@ -89,7 +99,7 @@ export class TrajectoryQueue {
     const position = initialPosition ? [...initialPosition] : new Array<number>(config.motionAxes.length).fill(0);
     this.tail = { position, unit: null, cruise2: 0 };
     this.lockedEventValues = new Array<number>(config.eventChannels.length).fill(0);
-    this.planner = new LookaheadPlanner((offset, entry2, exit2) => this.onPlanned(offset, entry2, exit2));
+    this.planner = new LookaheadPlanner(this.capacity, (offset, entry2, exit2) => this.onPlanned(offset, entry2, exit2));
   }
 
   /**
@@ -126,9 +136,11 @@ export class TrajectoryQueue {
    * executor that waits for room locks only final segments: the plan is the one
    * planPath makes of the whole path. Past `capacity` one producer at a time is let
    * in (no slot promised yet), as each appended move may make the front final.
+   * MAX_LOOKAHEAD_SEGMENTS bounds the memory on absurdly fine paths.
    */
   hasRoom(): boolean {
-    return this.untransmitted + this.reserved < this.capacity || (this.reserved === 0 && this.planner.needsMorePath);
+    if (this.untransmitted + this.reserved < this.capacity) return true;
+    return this.reserved === 0 && this.planner.needsMorePath && this.untransmitted < MAX_LOOKAHEAD_SEGMENTS;
   }
 
   /** The end of the path as appended so far (mm, motion axes). */
