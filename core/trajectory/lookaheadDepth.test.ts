@@ -86,6 +86,26 @@ describe('lookahead as deep as braking needs', () => {
     taken.forEach((seg, i) => expect(seg.duration_s).toBeCloseTo(batch.segments[i].duration, 9));
   });
 
+  it('lets waiting producers in one after another while the front needs more path, with no transmit between', async () => {
+    const maxl = createMAXL({ ...config, queueCapacity: 1 });
+    const q = maxl.queue;
+    await maxl.addSegmentToQueue({ endPosition: [100, 0] });
+    // The front, from rest, is the only segment: it needs more path, so this one comes in too.
+    await maxl.addSegmentToQueue({ endPosition: [200, 0] });
+    // Now the first is final (100 mm is room enough to brake): the next calls wait, in order.
+    expect(q.hasRoom()).toBe(false);
+    const ends = [1e-4, 2e-4, 3e-4].map((d) => [200 + d, 0]);
+    const added: number[] = [];
+    const calls = ends.map((end, i) => maxl.addSegmentToQueue({ endPosition: end }).then(() => added.push(i)));
+    await new Promise((r) => setImmediate(r));
+    expect(added).toEqual([]);
+    // One transmit: the second line is the front, and 0.1 mm after it is no room to brake.
+    q.transmitNext(0);
+    await Promise.all(calls);
+    expect(added).toEqual([0, 1, 2]);
+    expect(q.untransmittedCount).toBe(4);
+  });
+
   it(`bounds the lookahead at ${MAX_LOOKAHEAD_SEGMENTS} segments on an absurdly fine path`, () => {
     const maxl = createMAXL(config);
     const q = maxl.queue;

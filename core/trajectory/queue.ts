@@ -239,6 +239,9 @@ export class TrajectoryQueue {
     const receipt = this.enqueue(move, this.nextMoveId, null);
     this.nextMoveId++;
     this.flushPlanned();
+    // Past capacity the lookahead lets one producer in at a time: the next may come in if
+    // this move left the front still short of the path it needs.
+    if (this.roomWaiters.length > 0) this.wakeWaiters();
     return receipt;
   }
 
