@@ -101,8 +101,9 @@ describe('lookahead as deep as braking needs', () => {
     expect(added).toEqual([]);
     // One transmit: the second line is the front, and 0.1 mm after it is no room to brake.
     q.transmitNext(0);
-    await Promise.all(calls);
+    for (let turn = 0; turn < 5; turn++) await new Promise((r) => setImmediate(r));
     expect(added).toEqual([0, 1, 2]);
+    await Promise.all(calls);
     expect(q.untransmittedCount).toBe(4);
   });
 
