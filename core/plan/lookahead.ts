@@ -168,16 +168,6 @@ export class LookaheadPlanner {
     return this.frontEntry2;
   }
 
-  /** Entry speed² of the block `offset` after the front: final for planned blocks, else as last computed. */
-  entry2At(offset: number): number {
-    return this.entry2s[(this.first + offset) & this.mask];
-  }
-
-  /** Exit speed² of the block `offset` after the front (see entry2At). */
-  exit2At(offset: number): number {
-    return this.exit2s[(this.first + offset) & this.mask];
-  }
-
   /** Appends a block at the end of the path: its length (mm), acceleration limit (mm/s²) and entry cap (mm²/s²). */
   append(length: number, accel: number, maxEntry2: number): void {
     if (this.end - this.first > this.mask) this.grow();
