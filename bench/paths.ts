@@ -57,6 +57,22 @@ export function randomWalk(count = 100_000, seed = 42): BenchPath {
   return { name: 'randomWalk', describe: 'seeded random walk, 0.05–5 mm steps', start: [0, 0], points };
 }
 
+/**
+ * One turn of a circle flattened into `count` chords of `step` mm: a finely
+ * flattened curve, as SVG and G-code import make. 100 000 chords of 3 µm give
+ * r = count·step/2π ≈ 47.7 mm. The chord k spans the angle 2π/count, and its
+ * length is 2r·sin(π/count), which is `step` to within 1e-10 relative.
+ */
+export function fineCircle(count = 100_000, step = 0.003): BenchPath {
+  const r = (count * step) / (2 * Math.PI);
+  const points: number[][] = [];
+  for (let k = 1; k <= count; k++) {
+    const theta = (2 * Math.PI * k) / count;
+    points.push([r * Math.cos(theta), r * Math.sin(theta)]);
+  }
+  return { name: 'fineCircle', describe: `one turn of a circle, r ${r.toFixed(2)} mm, in ${count} chords of ${step * 1000} µm`, start: [r, 0], points };
+}
+
 export function benchPaths(count = 100_000): BenchPath[] {
   return [fineSpiral(count), rasterZigzag(count), randomWalk(count)];
 }

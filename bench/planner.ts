@@ -1,20 +1,40 @@
 /**
  * npm run bench -- planner
  *
- * Plans three 100 000-segment paths (bench/paths.ts) two ways:
+ * Plans four 100 000-segment paths (bench/paths.ts: a fine spiral, a raster, a random
+ * walk and a finely flattened circle of 3 µm chords) two ways, at the default
+ * settings (queue capacity and all):
  *  - incremental: through the queue, one awaited addSegmentToQueue per point (the
- *    paper's Listing 2), with a consumer that transmits (locks) the front segment
- *    whenever the queue is full, then drains it at the end; one MAXL per path,
- *    kept across runs as a workbench keeps it across jobs;
+ *    paper's Listing 2), drained by a DryRun (core/trajectory/dryRun.ts), an executor
+ *    with no device that takes a segment whenever the queue has no room, then the
+ *    rest at the end; one MAXL per path, kept across runs as a workbench keeps it
+ *    across jobs;
  *  - batch: planPath over the whole path.
- * Each is timed over several runs after warm-up runs; the median is reported. The
- * top-level segmentsPerSecond is the worst path's incremental rate.
+ *
+ * Figures, per path:
+ *  - segmentsPerSecond: segments planned (and, incrementally, locked and retired) per
+ *    second of wall time, the median over RUNS timed runs after WARMUP runs;
+ *  - coldSegmentsPerSecond: the same for the very first run on that path (a fresh
+ *    MAXL, code not yet optimised for its data), not part of the median;
+ *  - plannedDuration_s: the duration of the plan, s (the sum of the segments' durations);
+ *  - durationRatio: incremental plannedDuration_s / planPath's (1 = the queue's
+ *    lookahead found the time-optimal plan).
+ * Top level: segmentsPerSecond and coldSegmentsPerSecond are the worst path's
+ * incremental rates; worstDurationRatio the largest durationRatio;
+ * worstPlanPathSpeedup the smallest planPath rate / incremental rate.
  */
 import os from 'node:os';
-import { createMAXL, planPath } from '../core/index.ts';
-import { benchPaths, BENCH_LIMITS, type BenchPath } from './paths.ts';
+import { createMAXL, DryRun, planPath } from '../core/index.ts';
+import { benchPaths, fineCircle, BENCH_LIMITS, type BenchPath } from './paths.ts';
 
 const RUNS = Number(process.env.BENCH_RUNS ?? 5);
+const WARMUP = 2;
+
+interface Run {
+  seconds: number;
+  plannedDuration_s: number;
+  segments: number;
+}
 
 /**
  * One machine per path, reused for every run, as a workbench keeps one MAXL across
@@ -26,39 +46,27 @@ function machineFor(path: BenchPath) {
   return createMAXL({ motionAxes: ['x', 'y'], limits: BENCH_LIMITS }, { initialPosition: path.start });
 }
 
-async function incremental(maxl: ReturnType<typeof machineFor>, path: BenchPath): Promise<{ seconds: number; plannedDuration_s: number; segments: number }> {
-  const q = maxl.queue;
-  let plannedDuration = 0;
-  let segments = 0;
-  // The consumer a device session would be: lock the front segment, and retire what
-  // has been executed (here: everything before it, as if time had moved on).
-  const take = () => {
-    const seg = q.transmitNext(0)!;
-    q.retireUntil(seg.startTime_us);
-    plannedDuration += seg.duration_s;
-    segments++;
-  };
+async function incremental(maxl: ReturnType<typeof machineFor>, path: BenchPath): Promise<Run> {
   // Back to the start first (one move), so every run plans the same path from rest.
   await maxl.addSegmentToQueue({ endPosition: path.start });
-  q.planToRest();
-  while (q.untransmittedCount > 0) q.transmitNext(0);
+  new DryRun(maxl.queue).finish();
+  const dry = new DryRun(maxl.queue);
   const t0 = performance.now();
   for (const p of path.points) {
     await maxl.addSegmentToQueue({ endPosition: p });
-    if (!q.hasRoom()) take();
+    dry.takeWhileFull();
   }
-  q.planToRest();
-  while (q.untransmittedCount > 0) take();
+  dry.finish();
   const seconds = (performance.now() - t0) / 1000;
-  return { seconds, plannedDuration_s: plannedDuration, segments };
+  return { seconds, plannedDuration_s: dry.duration_s, segments: dry.segments };
 }
 
-function batch(path: BenchPath): { seconds: number; plannedDuration_s: number; segments: number } {
+function batch(path: BenchPath): Run {
   const moves = path.points.map((end) => ({ end }));
   const t0 = performance.now();
   const plan = planPath(path.start, moves, BENCH_LIMITS);
   const seconds = (performance.now() - t0) / 1000;
-  return { seconds, plannedDuration_s: plan.duration, segments: plan.segments.length };
+  return { seconds, plannedDuration_s: plan.duration, segments: plan.segmentCount };
 }
 
 function median(xs: number[]): number {
@@ -66,38 +74,53 @@ function median(xs: number[]): number {
   return s[Math.floor(s.length / 2)];
 }
 
-const WARMUP = 2;
+const rate = (r: Run) => r.segments / r.seconds;
+
 const results: Record<string, unknown> = {};
 let worst = Infinity;
-for (const path of benchPaths()) {
+let worstCold = Infinity;
+let worstDurationRatio = 0;
+let worstPlanPathSpeedup = Infinity;
+for (const path of [...benchPaths(), fineCircle()]) {
   // Incremental and batch runs are kept apart, so one's garbage does not land in the other's timing.
   const maxl = machineFor(path);
-  for (let r = 0; r < WARMUP; r++) await incremental(maxl, path);
-  const inc = [];
+  const incCold = await incremental(maxl, path);
+  for (let r = 1; r < WARMUP; r++) await incremental(maxl, path);
+  const inc: Run[] = [];
   for (let r = 0; r < RUNS; r++) inc.push(await incremental(maxl, path));
-  for (let r = 0; r < WARMUP; r++) batch(path);
-  const bat = [];
+  const batCold = batch(path);
+  for (let r = 1; r < WARMUP; r++) batch(path);
+  const bat: Run[] = [];
   for (let r = 0; r < RUNS; r++) bat.push(batch(path));
-  const incRate = median(inc.map((x) => x.segments / x.seconds));
-  const batRate = median(bat.map((x) => x.segments / x.seconds));
+  const incRate = median(inc.map(rate));
+  const batRate = median(bat.map(rate));
+  const durationRatio = inc[0].plannedDuration_s / bat[0].plannedDuration_s;
   worst = Math.min(worst, incRate);
+  worstCold = Math.min(worstCold, rate(incCold));
+  worstDurationRatio = Math.max(worstDurationRatio, durationRatio);
+  worstPlanPathSpeedup = Math.min(worstPlanPathSpeedup, batRate / incRate);
   results[path.name] = {
     describe: path.describe,
     segments: inc[0].segments,
-    incremental: { segmentsPerSecond: Math.round(incRate), plannedDuration_s: +inc[0].plannedDuration_s.toFixed(4) },
-    planPath: { segmentsPerSecond: Math.round(batRate), plannedDuration_s: +bat[0].plannedDuration_s.toFixed(4) },
+    incremental: { segmentsPerSecond: Math.round(incRate), coldSegmentsPerSecond: Math.round(rate(incCold)), plannedDuration_s: +inc[0].plannedDuration_s.toFixed(4) },
+    planPath: { segmentsPerSecond: Math.round(batRate), coldSegmentsPerSecond: Math.round(rate(batCold)), plannedDuration_s: +bat[0].plannedDuration_s.toFixed(4) },
+    durationRatio: +durationRatio.toFixed(7),
   };
-  console.error(`${path.name}: incremental ${Math.round(incRate)} seg/s, planPath ${Math.round(batRate)} seg/s`);
+  console.error(`${path.name}: incremental ${Math.round(incRate)} seg/s (cold ${Math.round(rate(incCold))}), planPath ${Math.round(batRate)} seg/s, duration ratio ${durationRatio.toFixed(7)}`);
 }
 console.log(
   JSON.stringify({
     bench: 'planner',
     segmentsPerSecond: Math.round(worst),
-    target: 1_000_000,
+    coldSegmentsPerSecond: Math.round(worstCold),
+    target: 3_000_000,
+    worstDurationRatio: +worstDurationRatio.toFixed(7),
+    durationRatioTarget: 1.000001,
+    worstPlanPathSpeedup: +worstPlanPathSpeedup.toFixed(3),
     limits: BENCH_LIMITS,
     runs: RUNS,
     warmupRuns: WARMUP,
     paths: results,
-    machine: { cpu: os.cpus()[0]?.model, node: process.version },
+    machine: { cpu: os.cpus()[0]?.model, node: process.version, loadAverage1m: +os.loadavg()[0].toFixed(2) },
   }),
 );

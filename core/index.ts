@@ -28,6 +28,7 @@ export type { Move, LinearMove, DwellMove } from './trajectory/moves.ts';
 export { isDwell, MAX_DWELL_S } from './trajectory/moves.ts';
 export type { MoveEvents, EvaluatorState, EventEvaluatorSpec, EventTrack } from './trajectory/events.ts';
 export { TrajectoryQueue, type MoveReceipt, type QueueEvent, type QueueListener } from './trajectory/queue.ts';
+export { DryRun } from './trajectory/dryRun.ts';
 export { Segment, type SegmentState } from './trajectory/segment.ts';
 export type { TrajectorySample } from './trajectory/tracks.ts';
 export { evaluateTiming, phasesOf, timingDuration, type Phase, type Timing } from './plan/phases.ts';

@@ -67,7 +67,7 @@ export interface MaxlConfig {
   subscriptions?: SubscriptionConfig[];
   /** mm, per motion axis: [min, max]. Moves that leave this box are refused. */
   softLimits?: Record<string, [number, number]>;
-  /** Segments not yet transmitted that the queue holds before addSegmentToQueue waits. Default 512. */
+  /** Segments not yet transmitted that the queue holds before addSegmentToQueue waits; more while none of them is final yet (the lookahead needs a braking distance of path, up to 65 536 segments). Default 512. */
   queueCapacity?: number;
 }
 

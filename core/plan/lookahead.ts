@@ -61,56 +61,91 @@
  * lockFront(). If the pointer has not reached it, its exit is decided with what is
  * known now (still stoppable, since e ≤ b), and that speed becomes the fixed entry
  * of the new front.
+ *
+ * ## How deep the lookahead must be
+ * The front block's exit is final (the planned pointer has passed it) exactly when
+ * its bound no longer depends on the end of the known path: when the path known
+ * after it is long enough to brake from the speed it can reach there. So an owner
+ * that locks only final blocks, and keeps appending while none is final
+ * (`needsMorePath`), plans exactly what planPath plans for the whole path, however
+ * short the blocks: the depth is a braking distance, not a count of blocks.
+ *
+ * ## The store
+ * Blocks are numbers only, kept in a ring of typed arrays (struct of arrays), one
+ * column per quantity: length, accel, maxEntry2, entry2, exit2 and work, 48 bytes a
+ * block. Block k (absolute: counted since the planner was made) lives at slot
+ * k & mask. The ring doubles when full, so it holds as many blocks as braking needs
+ * without a fixed count, and allocates nothing per block. The candidate deque is a
+ * second ring of the same capacity: its junctions all lie strictly inside the
+ * unlocked blocks (lockFront drops the one at the front junction), so it never
+ * holds more entries than there are blocks. The owner keeps its own objects for the
+ * blocks (the queue's segments) and hears of each final plan by offset from the
+ * front (onFinal).
  */
-import { shouldDropSpent } from './spentPrefix.ts';
-
-export interface PlanBlock {
+/** The planner inputs of one block (see the module comment). */
+export interface BlockLimits {
   /** mm */
   length: number;
   /** mm/s², the acceleration limit along this block's direction */
   accel: number;
-  /** (mm/s)², the cruise cap inside this block */
-  cruise2: number;
   /** (mm/s)², the cap on the entry speed²: junction deviation and both blocks' cruise caps */
   maxEntry2: number;
-  /** (mm/s)², planned entry speed² (final once the block is behind the planned pointer) */
-  entry2: number;
-  /** (mm/s)², planned exit speed² */
-  exit2: number;
-  /** planner bookkeeping: W at this block's entry, Σ a·L over earlier unlocked blocks */
-  work: number;
 }
 
-/** How a block's plan is reported to the owner when it becomes final. */
-export type FinalListener<B> = (block: B) => void;
+/**
+ * Told, in path order, of each block whose plan became final: its offset from the
+ * front block at that moment (0 = the front) and its entry and exit speeds², mm²/s².
+ */
+export type FinalListener = (offset: number, entry2: number, exit2: number) => void;
 
-export class LookaheadPlanner<B extends PlanBlock> {
-  /** Unlocked blocks; blocks[head] is the front. */
-  private blocks: B[] = [];
-  private head = 0;
-  /** Absolute index of the front block (= number of blocks locked so far). */
+/** Told of each unplanned block's provisional speeds (fillProvisional). */
+export type ProvisionalListener = (offset: number, entry2: number, exit2: number) => void;
+
+const INITIAL_CAPACITY = 1024;
+/** The largest store made up front (48 MB); more blocks than that grow it as they come. */
+const MAX_INITIAL_CAPACITY = 1 << 20;
+
+export class LookaheadPlanner {
+  // --- the block ring: block k at slot k & mask ---
+  private mask = INITIAL_CAPACITY - 1;
+  private lengths = new Float64Array(INITIAL_CAPACITY);
+  private accels = new Float64Array(INITIAL_CAPACITY);
+  private maxEntry2s = new Float64Array(INITIAL_CAPACITY);
+  private entry2s = new Float64Array(INITIAL_CAPACITY);
+  private exit2s = new Float64Array(INITIAL_CAPACITY);
+  /** W at each block's entry: Σ a·L over the unlocked blocks before it (since the last reset). */
+  private works = new Float64Array(INITIAL_CAPACITY);
+  /** Absolute index of the front block (= blocks locked so far). */
   private first = 0;
+  /** Absolute index one past the last block. */
+  private end = 0;
+  /** Blocks [first, first + plannedCount) have a final entry and exit. */
+  private plannedCount = 0;
   /** Squared speed at the front junction: 0 at rest, or the last locked block's exit. */
   private frontEntry2 = 0;
   /** W at the end junction. */
   private endWork = 0;
-  /** Suffix-minimum candidates among interior junctions: indices (absolute) and C values. */
-  private candJunction: number[] = [];
-  private candValue: number[] = [];
+
+  // --- the suffix-minimum candidates: absolute junction indices and C values, entries [candHead, candTail) at slot & mask ---
+  private candJunctions = new Float64Array(INITIAL_CAPACITY);
+  private candValues = new Float64Array(INITIAL_CAPACITY);
   private candHead = 0;
-  /** Blocks [front, front + plannedCount) have a final entry and exit. */
-  private plannedCount = 0;
+  private candTail = 0;
   /** Set by backwardBound(): whether the end-of-path rest set the bound it returned. */
   private boundSetByEnd = false;
-  private readonly onFinal: FinalListener<B> | undefined;
+  private readonly onFinal: FinalListener | undefined;
 
-  constructor(onFinal?: FinalListener<B>) {
+  /** `expected`: how many blocks the planner will hold at once, if known (planPath: all); the store grows past it anyway. */
+  constructor(expected: number, onFinal?: FinalListener) {
     this.onFinal = onFinal;
+    const wanted = Number.isFinite(expected) ? Math.min(Math.max(INITIAL_CAPACITY, expected), MAX_INITIAL_CAPACITY) : INITIAL_CAPACITY;
+    const capacity = 2 ** Math.ceil(Math.log2(wanted));
+    if (capacity !== INITIAL_CAPACITY) this.resize(capacity);
   }
 
   /** Unlocked blocks held. */
   get size(): number {
-    return this.blocks.length - this.head;
+    return this.end - this.first;
   }
 
   /** Unlocked blocks whose plan is final. */
@@ -118,30 +153,48 @@ export class LookaheadPlanner<B extends PlanBlock> {
     return this.plannedCount;
   }
 
+  /**
+   * Whether the front block's exit still depends on path not yet given: the known
+   * path after it is shorter than braking from the speed it may reach needs (or
+   * there is no block). An owner that wants the time-optimal plan appends while
+   * this holds, and locks only once it does not.
+   */
+  get needsMorePath(): boolean {
+    return this.plannedCount === 0;
+  }
+
   /** Squared speed at which the front block (or the next block appended, if none) starts. */
   get frontSpeed2(): number {
     return this.frontEntry2;
   }
 
-  /** The i-th unlocked block, 0 being the front. */
-  at(i: number): B {
-    return this.blocks[this.head + i];
-  }
-
-  append(block: B): void {
-    const count = this.size;
-    const k = this.first + count;
-    block.work = this.endWork;
-    if (count === 0) {
+  /** Appends a block at the end of the path: its length (mm), acceleration limit (mm/s²) and entry cap (mm²/s²). */
+  append(length: number, accel: number, maxEntry2: number): void {
+    if (this.end - this.first > this.mask) this.grow();
+    const k = this.end;
+    const slot = k & this.mask;
+    const work = this.endWork;
+    this.lengths[slot] = length;
+    this.accels[slot] = accel;
+    this.maxEntry2s[slot] = maxEntry2;
+    this.works[slot] = work;
+    this.exit2s[slot] = 0;
+    if (k === this.first) {
       // The new block is the front: its entry is fixed, so junction k needs no candidate.
-      block.entry2 = this.frontEntry2;
+      this.entry2s[slot] = this.frontEntry2;
     } else {
       // Junction k was the end of the path, at rest; it is now interior, with its real cap.
-      this.pushCandidate(k, block.maxEntry2 + 2 * block.work);
+      this.entry2s[slot] = 0;
+      this.pushCandidate(k, maxEntry2 + 2 * work);
     }
-    this.endWork = block.work + block.accel * block.length;
-    this.blocks.push(block);
+    this.endWork = work + accel * length;
+    this.end = k + 1;
     this.advance(false);
+  }
+
+  /** Appends a block given as an object with the planner's inputs. */
+  appendBlock(block: BlockLimits): void {
+    this.append(block.length, block.accel, block.maxEntry2);
   }
 
   /**
@@ -153,49 +206,53 @@ export class LookaheadPlanner<B extends PlanBlock> {
   }
 
   /**
-   * Locks the front block for transmission and returns it. Its exit speed is final
-   * from now on and becomes the entry speed of the next block.
+   * Locks the front block for transmission and returns its exit speed², final from
+   * now on and the entry speed² of the next block. Blocks that become final as a
+   * result are reported with offsets from the new front.
    */
-  lockFront(): B {
-    const count = this.size;
-    if (count === 0) throw new Error('lockFront: no unlocked block');
-    const block = this.blocks[this.head];
+  lockFront(): number {
+    if (this.size === 0) throw new Error('lockFront: no unlocked block');
+    const slot = this.first & this.mask;
     const decidedNow = this.plannedCount === 0;
     if (decidedNow) {
       // Not final yet: decide with what is known now (always stoppable: e ≤ b).
       const exit2 = this.frontExit2();
-      block.exit2 = exit2;
-      if (count > 1) this.blocks[this.head + 1].entry2 = exit2;
+      this.exit2s[slot] = exit2;
+      if (this.size > 1) this.entry2s[(this.first + 1) & this.mask] = exit2;
     } else {
       this.plannedCount--;
     }
-    this.frontEntry2 = block.exit2;
-    this.head++;
+    const exit2 = this.exit2s[slot];
+    this.frontEntry2 = exit2;
     this.first++;
+    // The candidate at the new front junction is not needed any more (the front's entry is fixed).
+    while (this.candHead < this.candTail && this.candJunctions[this.candHead & this.mask] <= this.first) this.candHead++;
     if (this.size === 0) this.reset();
     // Every operation leaves the planned pointer as far as it can go. Locking a front
     // that was already final changes neither the entry there nor any bound (W and C
     // are absolute), so the pointer stays; only an exit decided now, which fixes the
     // next block's entry, may let it move.
     else if (decidedNow) this.advance(false);
-    this.compact();
-    return block;
+    return exit2;
   }
 
   /** The exit speed² that lockFront() would give the front block now. */
   frontExit2(): number {
-    const block = this.blocks[this.head];
-    if (this.plannedCount > 0) return block.exit2;
+    const slot = this.first & this.mask;
+    if (this.plannedCount > 0) return this.exit2s[slot];
     if (this.size === 1) return 0;
-    return Math.min(this.backwardBound(this.first + 1, false), block.entry2 + 2 * block.accel * block.length);
+    return Math.min(this.backwardBound(this.first + 1, false), this.entry2s[slot] + 2 * this.accels[slot] * this.lengths[slot]);
   }
 
   /**
-   * Removes every unlocked block from the i-th on (0 = the front) and returns them
-   * in order. The remaining plan is recomputed from the front.
+   * Removes every unlocked block from the i-th on (0 = the front) and returns how
+   * many went. The remaining plan is recomputed from the front, and its final
+   * blocks are reported again.
    */
-  truncate(i: number): B[] {
-    const removed = this.blocks.splice(this.head + i);
+  truncate(i: number): number {
+    const keep = Math.max(0, Math.min(i, this.size));
+    const removed = this.size - keep;
+    this.end = this.first + keep;
     this.rebuild();
     return removed;
   }
@@ -211,56 +268,56 @@ export class LookaheadPlanner<B extends PlanBlock> {
     const e = this.frontEntry2;
     const slack = 1e-9 * (1 + e);
     if (count === 0) return e === 0;
-    const front = this.blocks[this.head];
-    if (e > front.maxEntry2 + slack) return false;
+    const slot = this.first & this.mask;
+    if (e > this.maxEntry2s[slot] + slack) return false;
     const after = count === 1 ? 0 : this.backwardBound(this.first + 1, false);
-    return e <= after + 2 * front.accel * front.length + slack;
+    return e <= after + 2 * this.accels[slot] * this.lengths[slot] + slack;
   }
 
   /**
-   * Fills entry2/exit2 of the blocks beyond the planned pointer with the plan as it
-   * stands (ending at rest). These values are provisional: more blocks may raise
-   * them. For display only; it changes nothing that is final. O(unplanned blocks).
+   * Computes the speeds of the blocks beyond the planned pointer as the plan stands
+   * (ending at rest) and reports each to `write`. These values are provisional:
+   * more blocks may raise them. For display only; it changes nothing that is final.
+   * O(unplanned blocks).
    */
-  fillProvisional(): void {
-    const start = this.head + this.plannedCount;
-    const end = this.blocks.length;
+  fillProvisional(write: ProvisionalListener): void {
+    const start = this.first + this.plannedCount;
+    const end = this.end;
     if (start >= end) return;
-    // Backward pass from the end at rest: exit2 holds b of the following junction.
+    const m = this.mask;
+    // Backward pass from the end at rest: b at each block's exit, kept in exit2s (working values:
+    // advance() writes an unplanned block's exit2 before it reads it).
     let next2 = 0;
     for (let k = end - 1; k > start; k--) {
-      const b = this.blocks[k];
-      b.exit2 = next2;
-      next2 = Math.min(b.maxEntry2, next2 + 2 * b.accel * b.length);
+      const s = k & m;
+      this.exit2s[s] = next2;
+      next2 = Math.min(this.maxEntry2s[s], next2 + 2 * this.accels[s] * this.lengths[s]);
     }
-    this.blocks[start].exit2 = next2;
+    this.exit2s[start & m] = next2;
     // Forward pass from the pointer's final entry.
-    let entry2 = this.blocks[start].entry2;
+    let entry2 = this.entry2s[start & m];
     for (let k = start; k < end; k++) {
-      const b = this.blocks[k];
-      b.entry2 = entry2;
-      const exit2 = Math.min(b.exit2, entry2 + 2 * b.accel * b.length);
-      b.exit2 = exit2;
+      const s = k & m;
+      const exit2 = Math.min(this.exit2s[s], entry2 + 2 * this.accels[s] * this.lengths[s]);
+      write(k - this.first, entry2, exit2);
       entry2 = exit2;
     }
+    // Only unplanned blocks' entry2/exit2 were touched here, which advance() writes before it reads.
   }
 
   // --- internals ---
 
   private pushCandidate(junction: number, value: number): void {
-    const js = this.candJunction;
-    const vs = this.candValue;
-    while (vs.length > this.candHead && vs[vs.length - 1] > value) {
-      vs.pop();
-      js.pop();
-    }
-    js.push(junction);
-    vs.push(value);
+    const m = this.mask;
+    while (this.candTail > this.candHead && this.candValues[(this.candTail - 1) & m] > value) this.candTail--;
+    const slot = this.candTail & m;
+    this.candJunctions[slot] = junction;
+    this.candValues[slot] = value;
+    this.candTail++;
   }
 
   private workAt(junction: number): number {
-    const i = junction - this.first;
-    return i < this.size ? this.blocks[this.head + i].work : this.endWork;
+    return junction < this.end ? this.works[junction & this.mask] : this.endWork;
   }
 
   /**
@@ -270,11 +327,12 @@ export class LookaheadPlanner<B extends PlanBlock> {
    * the minimum (then more blocks may raise it).
    */
   private backwardBound(junction: number, consume = true): number {
-    const js = this.candJunction;
+    const m = this.mask;
     let h = this.candHead;
-    while (h < js.length && js[h] < junction) h++;
+    const t = this.candTail;
+    while (h < t && this.candJunctions[h & m] < junction) h++;
     if (consume) this.candHead = h;
-    const interior = h < js.length ? this.candValue[h] : Infinity;
+    const interior = h < t ? this.candValues[h & m] : Infinity;
     const end = 2 * this.endWork;
     this.boundSetByEnd = end < interior;
     return Math.min(interior, end) - 2 * this.workAt(junction);
@@ -282,54 +340,72 @@ export class LookaheadPlanner<B extends PlanBlock> {
 
   /** Moves the planned pointer forward as far as the plan is final. */
   private advance(toRest: boolean): void {
-    const end = this.blocks.length;
-    let p = this.head + this.plannedCount;
+    const end = this.end;
+    const m = this.mask;
+    let p = this.first + this.plannedCount;
     while (p < end) {
-      const block = this.blocks[p];
-      const reach2 = block.entry2 + 2 * block.accel * block.length;
+      const s = p & m;
+      const reach2 = this.entry2s[s] + 2 * this.accels[s] * this.lengths[s];
       let exit2: number;
       if (p + 1 === end) {
         if (!toRest) break;
         exit2 = 0;
       } else {
-        const bound = this.backwardBound(this.first + (p + 1 - this.head));
+        const bound = this.backwardBound(p + 1);
         if (this.boundSetByEnd && reach2 > bound && !toRest) break;
         exit2 = Math.min(bound, reach2);
-        this.blocks[p + 1].entry2 = exit2;
+        this.entry2s[(p + 1) & m] = exit2;
       }
-      block.exit2 = exit2;
+      this.exit2s[s] = exit2;
       this.plannedCount++;
+      this.onFinal?.(p - this.first, this.entry2s[s], exit2);
       p++;
-      this.onFinal?.(block);
     }
   }
 
+  /** Forgets the blocks' bookkeeping (not their inputs); the front stays where it is. */
   private reset(): void {
-    this.blocks = [];
-    this.head = 0;
-    this.candJunction = [];
-    this.candValue = [];
     this.candHead = 0;
+    this.candTail = 0;
     this.plannedCount = 0;
     this.endWork = 0;
   }
 
-  /** Recomputes the work prefix, the candidates and the forward pass from the front. */
+  /** Recomputes the work prefix, the candidates and the forward pass from the front, from the inputs kept in the ring. */
   private rebuild(): void {
-    const kept = this.blocks.slice(this.head);
+    const from = this.first;
+    const to = this.end;
     this.reset();
-    for (const block of kept) this.append(block);
+    this.end = from;
+    const m = this.mask;
+    for (let k = from; k < to; k++) {
+      const s = k & m;
+      this.append(this.lengths[s], this.accels[s], this.maxEntry2s[s]);
+    }
   }
 
-  private compact(): void {
-    if (shouldDropSpent(this.head, this.blocks.length)) {
-      this.blocks = this.blocks.slice(this.head);
-      this.head = 0;
-    }
-    if (shouldDropSpent(this.candHead, this.candJunction.length)) {
-      this.candJunction = this.candJunction.slice(this.candHead);
-      this.candValue = this.candValue.slice(this.candHead);
-      this.candHead = 0;
-    }
+  /** Doubles the rings. */
+  private grow(): void {
+    this.resize(2 * (this.mask + 1));
+  }
+
+  /** Makes the rings `capacity` slots (a power of two), keeping every block and candidate at its slot for the new mask. */
+  private resize(capacity: number): void {
+    const oldMask = this.mask;
+    const mask = capacity - 1;
+    const move = (column: Float64Array<ArrayBuffer>, from: number, to: number): Float64Array<ArrayBuffer> => {
+      const grown = new Float64Array(capacity);
+      for (let k = from; k < to; k++) grown[k & mask] = column[k & oldMask];
+      return grown;
+    };
+    this.lengths = move(this.lengths, this.first, this.end);
+    this.accels = move(this.accels, this.first, this.end);
+    this.maxEntry2s = move(this.maxEntry2s, this.first, this.end);
+    this.entry2s = move(this.entry2s, this.first, this.end);
+    this.exit2s = move(this.exit2s, this.first, this.end);
+    this.works = move(this.works, this.first, this.end);
+    this.candJunctions = move(this.candJunctions, this.candHead, this.candTail);
+    this.candValues = move(this.candValues, this.candHead, this.candTail);
+    this.mask = mask;
   }
 }

@@ -100,6 +100,33 @@ export function evaluateTiming(timing: Timing, t: number, out: PathState): PathS
  * Phases of zero duration are left out.
  */
 export function trapezoidTiming(length: number, entry2: number, exit2: number, cruise2: number, accel: number): Timing {
+  const count = writeTrapezoid(scratch, 0, length, entry2, exit2, cruise2, accel);
+  // Sized once rather than grown by push, which over-allocates (25 slots for 6) and would, were V8
+  // to pretenure this allocation site, put young storage behind an old array (see ValidatedMove).
+  const timing: Timing = new Array<number>(count * PHASE_STRIDE);
+  for (let i = 0; i < timing.length; i++) timing[i] = scratch[i];
+  return timing;
+}
+
+/** The most phases a trapezoid has: accelerate, cruise, decelerate. */
+export const TRAPEZOID_MAX_PHASES = 3;
+
+const scratch = new Float64Array(TRAPEZOID_MAX_PHASES * PHASE_STRIDE);
+
+/**
+ * timingDuration(trapezoidTiming(…)) without allocating: the same phases, so the
+ * same duration to the last bit (the last phase's start plus its duration).
+ */
+export function trapezoidDuration(length: number, entry2: number, exit2: number, cruise2: number, accel: number): number {
+  const o = (writeTrapezoid(scratch, 0, length, entry2, exit2, cruise2, accel) - 1) * PHASE_STRIDE;
+  return scratch[o] + scratch[o + 1];
+}
+
+/**
+ * Writes trapezoidTiming's phases into `out` from offset o and returns how many
+ * there are (1 to 3): for planners that keep timings in columns, allocating nothing.
+ */
+export function writeTrapezoid(out: Float64Array, o: number, length: number, entry2: number, exit2: number, cruise2: number, accel: number): number {
   const ve = Math.sqrt(entry2);
   const vx = Math.sqrt(exit2);
   let vp2 = Math.min(cruise2, (2 * accel * length + entry2 + exit2) / 2);
@@ -115,26 +142,25 @@ export function trapezoidTiming(length: number, entry2: number, exit2: number, c
   const tDec = (vp - vx) / accel;
   const count = (tAcc > 0 ? 1 : 0) + (cruises ? 1 : 0) + (tDec > 0 ? 1 : 0);
   // Only a segment of zero length and zero speed has no phase; the queue skips those.
-  if (count === 0) return [0, 0, 0, ve, 0, 0];
-  // Sized once rather than grown by push, which over-allocates (25 slots for 6) and would, were V8
-  // to pretenure this allocation site, put young storage behind an old array (see ValidatedMove).
-  const timing: Timing = new Array<number>(count * PHASE_STRIDE);
-  let o = 0;
+  if (count === 0) {
+    writePhase(out, o, 0, 0, 0, ve, 0);
+    return 1;
+  }
   let t = 0;
   let s = 0;
   if (tAcc > 0) {
-    o = writePhase(timing, o, t, tAcc, s, ve, accel);
+    o = writePhase(out, o, t, tAcc, s, ve, accel);
     t += tAcc;
     s += dAcc;
   }
   if (cruises) {
     const tCruise = dCruise / vp;
-    o = writePhase(timing, o, t, tCruise, s, vp, 0);
+    o = writePhase(out, o, t, tCruise, s, vp, 0);
     t += tCruise;
     s += dCruise;
   }
-  if (tDec > 0) writePhase(timing, o, t, tDec, s, vp, -accel);
-  return timing;
+  if (tDec > 0) writePhase(out, o, t, tDec, s, vp, -accel);
+  return count;
 }
 
 /**
@@ -146,7 +172,7 @@ export function dwellTiming(seconds: number): Timing {
 }
 
 /** Writes a constant-acceleration phase at offset o; returns the offset after it. */
-function writePhase(timing: Timing, o: number, t0: number, duration: number, s0: number, v0: number, a0: number): number {
+function writePhase(timing: Float64Array, o: number, t0: number, duration: number, s0: number, v0: number, a0: number): number {
   timing[o] = t0;
   timing[o + 1] = duration;
   timing[o + 2] = s0;

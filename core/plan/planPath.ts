@@ -9,54 +9,22 @@
  * every line segment is capped to last at least that long, exactly as the queue
  * caps the segments it is given on that link (moves.ts floorCruise2), so the
  * planned duration is the time the queue will run.
+ *
+ * It computes each move's planner inputs with the queue's own functions (moves.ts:
+ * the same arithmetic, so the same plan to the last bit) but makes no Segment
+ * objects: the inputs go straight into the planner's typed-array store, and the
+ * result is columnar (plannedPath.ts). One pass validates, plans and times; a bad
+ * move throws before anything is returned.
  */
 import { resolveLimits } from '../config/limits.ts';
 import type { LimitsConfig, ResolvedConfig } from '../config/types.ts';
 import { MaxlError } from '../errors.ts';
-import { phasesOf, timingDuration, type Phase } from './phases.ts';
+import { trapezoidDuration } from './phases.ts';
 import { LookaheadPlanner } from './lookahead.ts';
-import { segmentsForMove, tailAfter, validateMove, type Move, type PathTail } from '../trajectory/moves.ts';
-import { sampleTimeline, type TrajectorySample } from '../trajectory/tracks.ts';
-import type { Segment } from '../trajectory/segment.ts';
+import { ColumnarPlannedPath, PathColumns, type PlannedPath } from './plannedPath.ts';
+import { dwellAccel, entryCap2, floorCruise2, lineAccel, lineCruise2, validateMove, ZERO_LENGTH_MM, type Move, type ValidatedMove } from '../trajectory/moves.ts';
 
-export interface PlannedSegment {
-  start: number[];
-  end: number[];
-  /** mm */
-  length: number;
-  /** s since the path began */
-  startTime: number;
-  /** s */
-  duration: number;
-  /** mm/s */
-  entryVelocity: number;
-  exitVelocity: number;
-  /** mm/s, the highest speed reached inside the segment */
-  peakVelocity: number;
-  /** mm/s, the cap the planner had for this segment (limits, the move's maxVelocity, the link's floor; 0 for a dwell) */
-  cruiseLimit: number;
-  /** mm/s², the acceleration limit along the segment (0 for a dwell, which has no direction) */
-  accelerationLimit: number;
-  /** Whether this is a dwell: start = end, length 0, speed 0 throughout, lasting `duration`. */
-  dwell: boolean;
-  phases: Phase[];
-}
-
-export interface PathSample {
-  position: number[];
-  velocity: number[];
-  acceleration: number[];
-}
-
-export interface PlannedPath {
-  /** s */
-  duration: number;
-  segments: PlannedSegment[];
-  /** Zero-length moves skipped. */
-  skipped: number;
-  /** The state at t seconds after the start (clamped: at rest before 0 and after `duration`). */
-  sample(t: number): PathSample;
-}
+export type { PathSample, PlannedPath, PlannedSegment } from './plannedPath.ts';
 
 /** A straight move to `end`, at most `maxVelocity` mm/s. */
 export interface PathLine {
@@ -102,76 +70,107 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
     softMax: axes.map(() => Infinity),
     queueCapacity: Infinity,
   };
-  // Validate everything first: bad input throws before any planning.
-  let from = start;
-  const validated = moves.map((m, i) => {
-    try {
-      // A dwell that also gives `end` or `maxVelocity` is refused by validateMove, as in the queue.
-      const line = m as Partial<PathLine> | undefined;
-      const move: Move =
-        m !== null && typeof m === 'object' && 'dwell_s' in m
-          ? ({ dwell_s: m.dwell_s, endPosition: line?.end, maxVelocity: line?.maxVelocity } as Move)
-          : { endPosition: line?.end as number[], maxVelocity: line?.maxVelocity };
-      const v = validateMove(config, move, from);
-      from = v.end;
-      return v;
-    } catch (err) {
-      // The queue's words name `endPosition`; a path move's key is `end`.
-      if (err instanceof MaxlError) {
-        const field = (err.field ?? '').replace(/^endPosition/, 'end');
-        throw new MaxlError(err.code, err.message.split('endPosition').join('end'), `moves[${i}]${field ? `.${field}` : ''}`);
-      }
-      throw err;
-    }
+  const axisCount = start.length;
+  const resolved = config.limits;
+  const minDuration_s = floor_us * 1e-6;
+  const columns = new PathColumns(axisCount, moves.length, start);
+  const vertices = columns.vertices;
+  // Every block's final plan lands in its row (planPath never locks, so the offset is the row).
+  const planner = new LookaheadPlanner(moves.length, (row, entry2, exit2) => {
+    columns.entry2s[row] = entry2;
+    columns.exit2s[row] = exit2;
   });
-
-  const planner = new LookaheadPlanner<Segment>();
-  const segments: Segment[] = [];
-  const tail: PathTail = { position: [...start], unit: null, cruise2: 0 };
+  // The tail of the path: the last line's direction and cruise cap (null after rest), in two
+  // alternating buffers so that a new direction never overwrites the one it is compared with.
+  let unit = new Array<number>(axisCount).fill(0);
+  let prevUnit: number[] | null = null;
+  let spare = new Array<number>(axisCount).fill(0);
+  let prevCruise2 = 0;
+  let from: readonly number[] = start;
   let skipped = 0;
-  validated.forEach((move, moveId) => {
-    const segs = segmentsForMove(config, move, tail, segments.length, moveId, floor_us * 1e-6);
-    if (segs.length === 0) skipped++;
-    for (const seg of segs) {
-      planner.append(seg);
-      segments.push(seg);
-      tailAfter(seg, tail);
+  let n = 0;
+  const restAccel = dwellAccel(config);
+  for (let i = 0; i < moves.length; i++) {
+    const move = validatePathMove(config, moves[i], from, i);
+    from = move.end;
+    if (move.dwell_s !== null) {
+      // A dwell: length 0, entry and exit caps 0 (moves.ts dwellSegment).
+      columns.dwells[n] = 1;
+      columns.dwellSeconds[n] = move.dwell_s;
+      columns.accels[n] = restAccel;
+      planner.append(0, restAccel, 0);
+      prevUnit = null;
+      prevCruise2 = 0;
+    } else {
+      const end = move.end;
+      const row = n * axisCount;
+      const total = lengthFrom(vertices, row, end);
+      if (total < ZERO_LENGTH_MM) {
+        skipped++;
+        continue;
+      }
+      for (let a = 0; a < axisCount; a++) unit[a] = (end[a] - vertices[row + a]) / total;
+      const cruise2 = floorCruise2(lineCruise2(resolved, move, unit), total, minDuration_s);
+      const accel = lineAccel(resolved, move, unit);
+      columns.lengths[n] = total;
+      columns.cruise2s[n] = cruise2;
+      columns.accels[n] = accel;
+      planner.append(total, accel, entryCap2(resolved, prevUnit, prevCruise2, unit, cruise2, true));
+      const used = unit;
+      unit = spare;
+      spare = used;
+      prevUnit = used;
+      prevCruise2 = cruise2;
     }
-  });
+    // The segment ends at the move's end; a dwell holds where the path is.
+    const next = (n + 1) * axisCount;
+    if (move.dwell_s !== null) vertices.copyWithin(next, next - axisCount, next);
+    else for (let a = 0; a < axisCount; a++) vertices[next + a] = move.end[a];
+    n++;
+  }
   planner.planToRest();
+  columns.count = n;
 
-  const planned: PlannedSegment[] = [];
+  // Each row's duration (its timing's, without making the timing), then the start times.
   let t = 0;
-  for (const seg of segments) {
-    const phases = phasesOf(seg.time());
-    const duration = timingDuration(seg.timing!);
-    planned.push({
-      start: seg.start,
-      end: seg.end,
-      length: seg.length,
-      startTime: t,
-      duration,
-      entryVelocity: Math.sqrt(seg.entry2),
-      exitVelocity: Math.sqrt(seg.exit2),
-      peakVelocity: Math.max(...phases.map((p) => p.v0 + p.a0 * p.duration), ...phases.map((p) => p.v0)),
-      cruiseLimit: Math.sqrt(seg.cruise2),
-      accelerationLimit: seg.isDwell ? 0 : seg.accel,
-      dwell: seg.isDwell,
-      phases,
-    });
+  for (let i = 0; i < n; i++) {
+    const duration =
+      columns.dwells[i] === 1
+        ? columns.dwellSeconds[i]
+        : trapezoidDuration(columns.lengths[i], columns.entry2s[i], columns.exit2s[i], columns.cruise2s[i], columns.accels[i]);
+    columns.startTimes[i] = t;
+    columns.durations[i] = duration;
     t += duration;
   }
-  const startOf = (i: number) => planned[i].startTime;
-  const atStart: PathSample = { position: [...start], velocity: start.map(() => 0), acceleration: start.map(() => 0) };
-  return {
-    duration: t,
-    segments: planned,
-    skipped,
-    sample(time: number): PathSample {
-      if (typeof time !== 'number' || Number.isNaN(time)) throw new MaxlError('MOVE_INVALID', `must be a time in s, got ${String(time)}`, 't');
-      const s: TrajectorySample | null = sampleTimeline(0, segments.length, (i) => segments[i], startOf, time, 1);
-      if (s === null) return { ...atStart, position: [...start] };
-      return { position: s.position, velocity: s.velocity, acceleration: s.acceleration };
-    },
-  };
+  return new ColumnarPlannedPath(columns, t, skipped);
+}
+
+/** mm from the vertex at vertices[row …] to `end`, as moves.ts distance() computes it. */
+function lengthFrom(vertices: Float64Array, row: number, end: readonly number[]): number {
+  let d2 = 0;
+  for (let a = 0; a < end.length; a++) {
+    const d = end[a] - vertices[row + a];
+    d2 += d * d;
+  }
+  return Math.sqrt(d2);
+}
+
+/** Validates path move i as the queue validates a move, in a path move's words (`end`, `moves[i]`). */
+function validatePathMove(config: ResolvedConfig, m: PathMove, from: readonly number[], i: number): ValidatedMove {
+  try {
+    // A dwell that also gives `end` or `maxVelocity` is refused by validateMove, as in the queue.
+    const line = m as Partial<PathLine> | undefined;
+    const move: Move =
+      m !== null && typeof m === 'object' && 'dwell_s' in m
+        ? ({ dwell_s: m.dwell_s, endPosition: line?.end, maxVelocity: line?.maxVelocity } as Move)
+        : { endPosition: line?.end as number[], maxVelocity: line?.maxVelocity };
+    return validateMove(config, move, from);
+  } catch (err) {
+    // The queue's words name `endPosition`; a path move's key is `end`.
+    if (err instanceof MaxlError) {
+      const field = (err.field ?? '').replace(/^endPosition/, 'end');
+      throw new MaxlError(err.code, err.message.split('endPosition').join('end'), `moves[${i}]${field ? `.${field}` : ''}`);
+    }
+    throw err;
+  }
 }

@@ -12,7 +12,7 @@
  * is skipped, as before.
  */
 import { MaxlError } from '../errors.ts';
-import { projectLimit } from '../config/limits.ts';
+import { projectLimit, type ResolvedLimits } from '../config/limits.ts';
 import type { ResolvedConfig } from '../config/types.ts';
 import { junctionSpeed2 } from '../plan/junction.ts';
 import { resolveMoveEvents, type MoveEvents, type ResolvedEventSpec } from './events.ts';
@@ -223,7 +223,7 @@ function validateDwell(config: ResolvedConfig, move: DwellMove, from: readonly n
  * value only has to be finite and positive for code that divides by it. The
  * machine's weakest finite limit is both.
  */
-function dwellAccel(config: ResolvedConfig): number {
+export function dwellAccel(config: ResolvedConfig): number {
   let a = config.limits.maxAccel;
   for (const v of config.limits.axisMaxAccel) if (v < a) a = v;
   return a;
@@ -285,6 +285,29 @@ export function floorCruise2(cruise2: number, length: number, minDuration_s: num
   return Math.min(cruise2, v * v);
 }
 
+/** The speed² cap (mm²/s²) of a line along `unit`: the move's own cap and the machine's speed limits projected on it. */
+export function lineCruise2(limits: ResolvedLimits, move: ValidatedMove, unit: readonly number[]): number {
+  const speed = Math.min(move.maxVelocity, projectLimit(limits.maxSpeed, limits.axisMaxSpeed, unit));
+  return speed * speed;
+}
+
+/** The acceleration limit (mm/s²) of a line along `unit`: the move's own cap and the machine's limits projected on it. */
+export function lineAccel(limits: ResolvedLimits, move: ValidatedMove, unit: readonly number[]): number {
+  return Math.min(move.maxAcceleration, projectLimit(limits.maxAccel, limits.axisMaxAccel, unit));
+}
+
+/**
+ * The cap on a line's entry speed² (mm²/s²) after a tail leaving along `prevUnit`
+ * (null: at rest) with cruise cap `prevCruise2`: the corner's junction speed (none
+ * when `corner` is false: a piece continuing its own move straight on), this line's
+ * cruise cap and the one before.
+ */
+export function entryCap2(limits: ResolvedLimits, prevUnit: readonly number[] | null, prevCruise2: number, unit: readonly number[], cruise2: number, corner: boolean): number {
+  if (prevUnit === null) return 0;
+  const junction2 = corner ? junctionSpeed2(prevUnit, unit, limits) : Infinity;
+  return Math.min(junction2, cruise2, prevCruise2);
+}
+
 /**
  * Splits a validated move into segments (one, unless a nonlinear transform needs
  * more), each with its planner inputs, numbered from firstId. A dwell is one
@@ -308,9 +331,8 @@ export function segmentsForMove(
   const unit = new Array<number>(p0.length);
   for (let i = 0; i < p0.length; i++) unit[i] = (move.end[i] - p0[i]) / total;
   const limits = config.limits;
-  const speed = Math.min(move.maxVelocity, projectLimit(limits.maxSpeed, limits.axisMaxSpeed, unit));
-  const moveCruise2 = speed * speed;
-  const accel = Math.min(move.maxAcceleration, projectLimit(limits.maxAccel, limits.axisMaxAccel, unit));
+  const moveCruise2 = lineCruise2(limits, move, unit);
+  const accel = lineAccel(limits, move, unit);
 
   // Pieces of the move: one, unless a nonlinear transform needs more.
   const fractions = hasNonlinearTransform(config) ? subdivisionFractions(config.transforms, p0, move.end) : WHOLE;
@@ -327,8 +349,7 @@ export function segmentsForMove(
     const cruise2 = floorCruise2(moveCruise2, length, minDuration_s);
     const a1 = last && move.actuatorEnd !== null ? move.actuatorEnd : actuatorPosition(config.transforms, end);
     // Within one move all pieces share the direction; only the first meets a corner.
-    const junction2 = prevUnit === null ? 0 : k === 0 ? junctionSpeed2(prevUnit, unit, limits) : Infinity;
-    const maxEntry2 = Math.min(junction2, cruise2, prevUnit === null ? 0 : prevCruise2);
+    const maxEntry2 = entryCap2(limits, prevUnit, prevCruise2, unit, cruise2, k === 0);
     let rate = a0; // (empty when there are no transforms)
     if (a0.length > 0) {
       rate = new Array<number>(a0.length);

@@ -8,9 +8,10 @@
  *   historical  executed (its end time has passed)
  *
  * Untransmitted moves can be cancelled or replaced; the plan is redone from there.
- * The queue is bounded: it holds at most `capacity` untransmitted segments, and
- * producers wait for room (reserveSlot), so a loop of addSegmentToQueue calls paces
- * itself to the machine. An executor (the device sessions, or a dry run) takes
+ * The queue is bounded: it holds `capacity` untransmitted segments, and more only
+ * while the lookahead needs more path to be final (hasRoom: as deep as braking
+ * needs, however short the segments); producers wait for room (reserveSlot), so a
+ * loop of addSegmentToQueue calls paces itself to the machine. An executor (the device sessions, or a dry run) takes
  * segments from the front with transmitNext() and retires them with retireUntil()
  * as time passes.
  */
@@ -41,6 +42,16 @@ export interface MoveReceipt {
 
 export const DEFAULT_QUEUE_CAPACITY = 512;
 
+/**
+ * The most untransmitted segments the queue takes for the lookahead's sake (beyond
+ * its capacity). 65 536 segments hold the 10.4 mm that braking from 250 mm/s at
+ * 3 000 mm/s² needs down to 0.16 µm per segment; on a finer path the plan brakes
+ * earlier than it must (slower, never unsafe). It bounds the memory a path of
+ * near-zero segments could take: about 0.6 kB a segment (segment objects and the
+ * planner's store), 40 MB at the bound.
+ */
+export const MAX_LOOKAHEAD_SEGMENTS = 65_536;
+
 /** The tracks of a segment that sets no event channel. */
 const NO_EVENTS: EventTrack[] = [];
 
@@ -61,7 +72,7 @@ export class TrajectoryQueue {
   private live: Segment[] = [];
   private head = 0;
   private untransmitted = 0;
-  private readonly planner: LookaheadPlanner<Segment>;
+  private readonly planner: LookaheadPlanner;
   /** Segments finalised during the current call, reported once it returns. */
   private newlyPlanned: Segment[] = [];
   private nextSegmentId = 1;
@@ -88,7 +99,7 @@ export class TrajectoryQueue {
     const position = initialPosition ? [...initialPosition] : new Array<number>(config.motionAxes.length).fill(0);
     this.tail = { position, unit: null, cruise2: 0 };
     this.lockedEventValues = new Array<number>(config.eventChannels.length).fill(0);
-    this.planner = new LookaheadPlanner<Segment>((seg) => this.onPlanned(seg));
+    this.planner = new LookaheadPlanner(this.capacity, (offset, entry2, exit2) => this.onPlanned(offset, entry2, exit2));
   }
 
   /**
@@ -116,8 +127,20 @@ export class TrajectoryQueue {
     return this.untransmitted;
   }
 
+  /**
+   * Whether a producer may append now: while fewer than `capacity` segments are
+   * untransmitted, and beyond that for as long as the lookahead needs more path
+   * (none of them is final yet: the path known after the first is shorter than
+   * braking from the speed it may reach there; plan/lookahead.ts). So the depth of
+   * the lookahead is a braking distance, however short the segments, and an
+   * executor that waits for room locks only final segments: the plan is the one
+   * planPath makes of the whole path. Past `capacity` one producer at a time is let
+   * in (no slot promised yet), as each appended move may make the front final.
+   * MAX_LOOKAHEAD_SEGMENTS bounds the memory on absurdly fine paths.
+   */
   hasRoom(): boolean {
-    return this.untransmitted + this.reserved < this.capacity;
+    if (this.untransmitted + this.reserved < this.capacity) return true;
+    return this.reserved === 0 && this.planner.needsMorePath && this.untransmitted < MAX_LOOKAHEAD_SEGMENTS;
   }
 
   /** The end of the path as appended so far (mm, motion axes). */
@@ -148,7 +171,7 @@ export class TrajectoryQueue {
 
   /** The first segment not yet transmitted, if any. */
   peekUntransmitted(): Segment | undefined {
-    return this.untransmitted > 0 ? this.planner.at(0) : undefined;
+    return this.untransmitted > 0 ? this.live[this.live.length - this.untransmitted] : undefined;
   }
 
   /**
@@ -156,7 +179,12 @@ export class TrajectoryQueue {
    * at rest now), for display. Final plans are untouched.
    */
   provisionalPlan(): void {
-    this.planner.fillProvisional();
+    const first = this.live.length - this.untransmitted;
+    this.planner.fillProvisional((offset, entry2, exit2) => {
+      const seg = this.live[first + offset];
+      seg.entry2 = entry2;
+      seg.exit2 = exit2;
+    });
   }
 
   /**
@@ -211,6 +239,9 @@ export class TrajectoryQueue {
     const receipt = this.enqueue(move, this.nextMoveId, null);
     this.nextMoveId++;
     this.flushPlanned();
+    // Past capacity the lookahead lets one producer in at a time: the next may come in if
+    // this move left the front still short of the path it needs.
+    if (this.roomWaiters.length > 0) this.wakeWaiters();
     return receipt;
   }
 
@@ -230,7 +261,7 @@ export class TrajectoryQueue {
     for (const seg of segments) {
       this.live.push(seg);
       this.untransmitted++;
-      this.planner.append(seg);
+      this.planner.appendBlock(seg);
     }
     const last = segments[segments.length - 1];
     tailAfter(last, this.tail);
@@ -373,7 +404,7 @@ export class TrajectoryQueue {
     this.newlyPlanned = [];
     this.planner.truncate(index - firstUntransmitted);
     change();
-    for (let i = index; i < this.live.length; i++) this.planner.append(this.live[i]);
+    for (let i = index; i < this.live.length; i++) this.planner.appendBlock(this.live[i]);
     this.settleReplan(wasPlanned);
   }
 
@@ -425,7 +456,7 @@ export class TrajectoryQueue {
       for (const seg of removed) {
         this.live.push(seg);
         this.untransmitted++;
-        this.planner.append(seg);
+        this.planner.appendBlock(seg);
       }
       Object.assign(this.tail, oldTail);
       this.settleReplan(wasPlanned);
@@ -443,7 +474,7 @@ export class TrajectoryQueue {
   }
 
   private truncateTo(index: number, planIndex: number): void {
-    const dropped = this.planner.truncate(planIndex).length;
+    const dropped = this.planner.truncate(planIndex);
     this.live.length = index;
     this.untransmitted -= dropped;
   }
@@ -474,10 +505,12 @@ export class TrajectoryQueue {
     const next = this.timeFront();
     if (next === undefined) return undefined;
     const tracks = this.eventTracksOf(next);
-    const seg = this.planner.lockFront();
+    const seg = next;
+    // One fewer untransmitted first: blocks that lockFront() finalises are reported by offset from the new front.
+    this.untransmitted--;
+    seg.exit2 = this.planner.lockFront();
     seg.startTime_us = this.nextStart_us(earliestStart_us);
     seg.state = 'transmitted';
-    this.untransmitted--;
     this.lockedEnd_us = seg.endTime_us;
     this.lockedExit2 = seg.exit2;
     seg.eventsAtStart = this.lockedEventValues;
@@ -499,8 +532,9 @@ export class TrajectoryQueue {
    */
   timeFront(): Segment | undefined {
     if (this.untransmitted === 0) return undefined;
-    const next = this.planner.at(0);
+    const next = this.live[this.live.length - this.untransmitted];
     if (next.state !== 'planned') {
+      next.entry2 = this.planner.frontSpeed2;
       next.exit2 = this.planner.frontExit2();
       next.time();
     }
@@ -547,7 +581,11 @@ export class TrajectoryQueue {
 
   // --- internals ---
 
-  private onPlanned(seg: Segment): void {
+  /** The planner's report of a final plan, by offset from the first untransmitted segment. */
+  private onPlanned(offset: number, entry2: number, exit2: number): void {
+    const seg = this.live[this.live.length - this.untransmitted + offset];
+    seg.entry2 = entry2;
+    seg.exit2 = exit2;
     seg.time();
     if (seg.state === 'unplanned') {
       seg.state = 'planned';

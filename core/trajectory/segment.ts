@@ -14,7 +14,7 @@
  * plan for the segment is final. Its absolute start time, in author µs, is set when
  * the segment is transmitted.
  */
-import type { PlanBlock } from '../plan/lookahead.ts';
+import type { BlockLimits } from '../plan/lookahead.ts';
 import { dwellTiming, timingDuration, trapezoidTiming, type Timing } from '../plan/phases.ts';
 import type { EventTrack, ResolvedEventSpec } from './events.ts';
 import type { ValidatedMove } from './moves.ts';
@@ -24,7 +24,7 @@ const NO_ACTUATORS: number[] = [];
 /** The paper's four states, in order. */
 export type SegmentState = 'unplanned' | 'planned' | 'transmitted' | 'historical';
 
-export class Segment implements PlanBlock {
+export class Segment implements BlockLimits {
   readonly id: number;
   /** The addSegmentToQueue call this segment came from; a nonlinear transform splits one move into many segments. */
   readonly moveId: number;
@@ -47,13 +47,12 @@ export class Segment implements PlanBlock {
   /** Event channel values or evaluators for this segment, if any. */
   readonly events: readonly ResolvedEventSpec[];
 
-  // planner (PlanBlock): limits along this segment, set by moves.ts
+  // planner: limits along this segment (BlockLimits, set by moves.ts) and the planned speeds²
   accel = 0;
   cruise2 = 0;
   maxEntry2 = 0;
   entry2 = 0;
   exit2 = 0;
-  work = 0;
 
   // timing
   /** s(t) as packed phases, final once the segment is planned. Null before. */

@@ -1,0 +1,54 @@
+/**
+ * A dry run: an executor with no device, for benches and tests that plan through
+ * the queue and want what a machine would run, as fast as the planner goes.
+ *
+ * It locks segments from the front and retires them at once, as if each had been
+ * executed the moment it was sent (time runs as fast as the plan is made), so the
+ * queue never holds more than planning needs. Like a device session it takes a
+ * segment only when it must: while the queue has no room for the producer
+ * (`takeWhileFull`, after each add), and at the end, with the plan brought to
+ * rest (`finish`). A queue that waits for room therefore hands it only segments
+ * whose plan is final (TrajectoryQueue.hasRoom), and the dry run's total duration
+ * is the time-optimal one planPath gives for the same path.
+ */
+import type { TrajectoryQueue } from './queue.ts';
+import type { Segment } from './segment.ts';
+
+export class DryRun {
+  private readonly queue: TrajectoryQueue;
+  private readonly onSegment: ((seg: Segment) => void) | undefined;
+  /** Segments taken so far. */
+  segments = 0;
+  /** s, the sum of the durations of the segments taken. */
+  duration_s = 0;
+
+  /** `onSegment` hears of each segment as it is taken (locked, timed and retired). */
+  constructor(queue: TrajectoryQueue, onSegment?: (seg: Segment) => void) {
+    this.queue = queue;
+    this.onSegment = onSegment;
+  }
+
+  /** Takes the front segment: locks it, retires it, and returns it; undefined if none is queued. */
+  takeFront(): Segment | undefined {
+    const seg = this.queue.transmitNext(0);
+    if (seg === undefined) return undefined;
+    // Executed as soon as it is sent: everything up to its start is history now.
+    this.queue.retireUntil(seg.startTime_us);
+    this.segments++;
+    this.duration_s += seg.duration_s;
+    this.onSegment?.(seg);
+    return seg;
+  }
+
+  /** Takes segments until the producer has room again (what a producer loop calls after each add). */
+  takeWhileFull(): void {
+    while (!this.queue.hasRoom() && this.takeFront() !== undefined);
+  }
+
+  /** The path is complete: plans it to rest and takes every queued segment. */
+  finish(): void {
+    this.queue.planToRest();
+    while (this.takeFront() !== undefined);
+    this.queue.retireUntil(this.queue.transmittedEnd_us);
+  }
+}
