@@ -66,4 +66,16 @@ describe('moves refused before they are queued', () => {
     // Just inside the range is fine.
     await expect(corexy.addSegmentToQueue({ endPosition: [16_000, 16_000] })).resolves.toMatchObject({ skipped: false });
   });
+
+  it('an event value or a per-move acceleration the wire cannot carry', async () => {
+    const maxl = createMAXL({ motionAxes: ['x', 'y'], eventChannels: ['laser'], limits });
+    // Finite as a double, infinite as the wire's 32-bit float.
+    const big = await refused(maxl, { endPosition: [1, 1], eventChannels: { laser: -3.5e38 } });
+    expect(big.field).toBe('eventChannels.laser');
+    expect(big.message).toMatch(/within ±3\.4e38/);
+    const gentle = await refused(maxl, { endPosition: [1, 1], maxAcceleration: 5e-324 });
+    expect(gentle.field).toBe('maxAcceleration');
+    expect(gentle.message).toMatch(/at least 0\.001 mm\/s²/);
+  });
+
 });
