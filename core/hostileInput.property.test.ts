@@ -285,5 +285,5 @@ describe('hostile input to the core', () => {
     expect(reached.refusedMoves).toBeGreaterThan(reached.machines / 2);
     expect(reached.acceptedMoves).toBeGreaterThan(reached.machines);
     expect(reached.framesChecked).toBeGreaterThan(reached.machines);
-  }, 60_000);
+  }, 600_000); // at bench scale (npm run bench -- properties: 6 000 cases) it takes ~30 s; 200 in the suite, < 2 s
 });
