@@ -35,12 +35,33 @@ function positive(field: string, value: unknown): number {
   return value;
 }
 
-function perAxis(field: string, value: unknown, axes: number): number[] {
+/**
+ * What the wire and the readers can run, as a [min, max] per kind of limit.
+ *  - Speed: below 1 µm/s (moves.ts MIN_SPEED) a speed's square underflows and a
+ *    segment's µs outgrow the wire; above 100 m/s a position track's fixed-point
+ *    speed (firmware fixed_point.h, ~16 000 units/µs = 250 m/s) has no room left
+ *    for a CoreXY actuator's √2.
+ *  - Acceleration: the same floor; above 10⁶ mm/s² (100 g) a reader's Q0.32 half
+ *    acceleration Δ·α/2 overflows (profile.h FIXED_LIMIT), and TIMING's f32 alpha
+ *    = a/L would overflow for the shortest segments long before 4·10³⁸.
+ * A limit outside is refused here rather than sent as a TIMING a device refuses.
+ */
+export const LIMIT_RANGE = { speed: [1e-3, 1e5], accel: [1e-3, 1e6] } as const;
+
+function limit(field: string, value: unknown, kind: keyof typeof LIMIT_RANGE): number {
+  const v = positive(field, value);
+  const [min, max] = LIMIT_RANGE[kind];
+  const unit = kind === 'speed' ? 'mm/s' : 'mm/s²';
+  if (v < min || v > max) throw configError(field, `must be between ${min} and ${max} ${unit}, got ${v}`);
+  return v;
+}
+
+function perAxis(field: string, value: unknown, axes: number, kind: keyof typeof LIMIT_RANGE): number[] {
   if (!Array.isArray(value)) throw configError(field, 'must be an array with one limit per motion axis');
   if (value.length !== axes) {
     throw configError(field, `has ${value.length} entries but there are ${axes} motion axes`);
   }
-  return value.map((v, i) => positive(`${field}[${i}]`, v));
+  return value.map((v, i) => limit(`${field}[${i}]`, v, kind));
 }
 
 /** Splits a `number | number[]` limit and its explicit per-axis twin into (scalar, perAxis). */
@@ -50,17 +71,18 @@ function resolvePair(
   axisField: string,
   axis: unknown,
   axes: number,
+  kind: keyof typeof LIMIT_RANGE,
 ): { magnitude: number; perAxis: number[] } {
   let magnitude = Infinity;
   let axisLimits: number[] | undefined;
   if (Array.isArray(scalar)) {
-    axisLimits = perAxis(scalarField, scalar, axes);
+    axisLimits = perAxis(scalarField, scalar, axes, kind);
   } else if (scalar !== undefined) {
-    magnitude = positive(scalarField, scalar);
+    magnitude = limit(scalarField, scalar, kind);
   }
   if (axis !== undefined) {
     if (axisLimits) throw configError(axisField, `per-axis limits are already given as an array in ${scalarField}`);
-    axisLimits = perAxis(axisField, axis, axes);
+    axisLimits = perAxis(axisField, axis, axes, kind);
   }
   if (magnitude === Infinity && !axisLimits) {
     throw configError(scalarField, `is required: give a number (bound on the vector magnitude) or an array (one bound per axis)`);
@@ -74,13 +96,14 @@ export function resolveLimits(limits: LimitsConfig | undefined, axes: number, fi
   for (const key of Object.keys(limits)) {
     if (!known.has(key)) throw configError(`${field}.${key}`, `is not a known limit (known: ${[...known].join(', ')})`);
   }
-  const v = resolvePair(`${field}.maxVelocity`, limits.maxVelocity, `${field}.axisMaxVelocity`, limits.axisMaxVelocity, axes);
+  const v = resolvePair(`${field}.maxVelocity`, limits.maxVelocity, `${field}.axisMaxVelocity`, limits.axisMaxVelocity, axes, 'speed');
   const a = resolvePair(
     `${field}.maxAcceleration`,
     limits.maxAcceleration,
     `${field}.axisMaxAcceleration`,
     limits.axisMaxAcceleration,
     axes,
+    'accel',
   );
   const junctionDeviation =
     limits.junctionDeviation === undefined

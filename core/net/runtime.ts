@@ -24,6 +24,7 @@ import { DeviceState, nameOf, type DeviceStateName } from './protocol.ts';
 import { DeviceSession, type DeviceInfo, type SessionOptions } from './session.ts';
 import { Streamer, type StreamerEvent, type StreamerOptions } from './streamer.ts';
 import { feedLimit, type FeedLimit } from './linkFeedLimit.ts';
+import { WIRE_MIN_SEGMENT_S } from '../trajectory/moves.ts';
 
 export interface RuntimeOptions {
   links: Link[];
@@ -105,7 +106,8 @@ export class Runtime {
       .filter((p) => p.readsTrajectory)
       .map((p) => ({ device: p.device, positionSlots: p.positionSlots.length, bytesPerSecond: links[infos.findIndex((i) => i.name === p.device)]?.bytesPerSecond }));
     this.limit = this.options.linkFeedLimit === false ? feedLimit([]) : feedLimit(loads);
-    this.host.queue.setMinSegmentDuration(this.limit.minSegment_us * 1e-6);
+    // And never under the wire's own floor: a segment timed 0 µs is one the reader refuses.
+    this.host.queue.setMinSegmentDuration(Math.max(this.limit.minSegment_us * 1e-6, WIRE_MIN_SEGMENT_S));
   }
 
   on(listener: (e: RuntimeEvent) => void): () => void {

@@ -66,4 +66,29 @@ describe('moves refused before they are queued', () => {
     // Just inside the range is fine.
     await expect(corexy.addSegmentToQueue({ endPosition: [16_000, 16_000] })).resolves.toMatchObject({ skipped: false });
   });
+
+  it('an event value or a per-move acceleration the wire cannot carry', async () => {
+    const maxl = createMAXL({ motionAxes: ['x', 'y'], eventChannels: ['laser'], limits });
+    // Finite as a double, infinite as the wire's 32-bit float.
+    const big = await refused(maxl, { endPosition: [1, 1], eventChannels: { laser: -3.5e38 } });
+    expect(big.field).toBe('eventChannels.laser');
+    expect(big.message).toMatch(/within ±3\.4e38/);
+    const gentle = await refused(maxl, { endPosition: [1, 1], maxAcceleration: 5e-324 });
+    expect(gentle.field).toBe('maxAcceleration');
+    expect(gentle.message).toMatch(/at least 0\.001 mm\/s²/);
+  });
+
+
+  it('a nonlinear transform with a tolerance too fine, or a move it would cut into too many pieces', async () => {
+    const config = (tolerance: number): MaxlConfig => ({
+      motionAxes: ['x', 'y'],
+      limits,
+      transforms: [{ type: 'function', from: ['x', 'y'], to: ['a'], fn: (p) => [10 * Math.sin(p[0] * 1000)], tolerance }],
+    });
+    expect(() => createMAXL(config(5e-324))).toThrow(expect.objectContaining({ code: 'CONFIG_INVALID', field: 'transforms[0].tolerance' }));
+    // Ripples of 6 µm period over 60 mm: far more than 10 000 pieces at 0.1 µm.
+    const err = await refused(createMAXL(config(1e-4)), { endPosition: [60, 0] });
+    expect(err.code).toBe('MOVE_INVALID');
+    expect(err.message).toMatch(/needs more than 10000 pieces to follow this move within its tolerance/);
+  });
 });

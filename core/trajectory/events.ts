@@ -64,9 +64,17 @@ export interface EventTrack {
   values: number[];
 }
 
+/**
+ * Event values travel as 32-bit floats (docs/protocol.md §4 EVENTS): a double past
+ * ±3.4·10³⁸ is finite here but infinite there.
+ */
+export function fitsWireFloat(value: unknown): value is number {
+  return typeof value === 'number' && Number.isFinite(Math.fround(value));
+}
+
 function finiteValue(field: string, value: unknown): number {
-  if (typeof value !== 'number' || !Number.isFinite(value)) {
-    throw new MaxlError('MOVE_INVALID', `must be a finite number, got ${String(value)}`, field);
+  if (!fitsWireFloat(value)) {
+    throw new MaxlError('MOVE_INVALID', `must be a finite number within ±3.4e38 (a 32-bit float on the wire), got ${String(value)}`, field);
   }
   return value;
 }
@@ -164,10 +172,10 @@ export function buildEventTracks(
           unit: [...seg.unit],
         });
       } catch (err) {
-        throw new MaxlError('MOVE_INVALID', `evaluator threw at t = ${t.toFixed(4)} s: ${(err as Error).message}`, `eventChannels.${channels[spec.channel]}`);
+        throw new MaxlError('MOVE_INVALID', `evaluator threw at t = ${t.toFixed(4)} s: ${err instanceof Error ? err.message : String(err)}`, `eventChannels.${channels[spec.channel]}`);
       }
-      if (typeof value !== 'number' || !Number.isFinite(value)) {
-        throw new MaxlError('MOVE_INVALID', `evaluator returned ${String(value)} at t = ${t.toFixed(4)} s; it must return a finite number`, `eventChannels.${channels[spec.channel]}`);
+      if (!fitsWireFloat(value)) {
+        throw new MaxlError('MOVE_INVALID', `evaluator returned ${String(value)} at t = ${t.toFixed(4)} s; it must return a finite number within ±3.4e38`, `eventChannels.${channels[spec.channel]}`);
       }
       if (values.length === 0 || values[values.length - 1] !== value) {
         times.push(t);

@@ -12,7 +12,7 @@
  * is skipped, as before.
  */
 import { MaxlError } from '../errors.ts';
-import { projectLimit, type ResolvedLimits } from '../config/limits.ts';
+import { LIMIT_RANGE, projectLimit, type ResolvedLimits } from '../config/limits.ts';
 import type { ResolvedConfig } from '../config/types.ts';
 import { junctionSpeed2 } from '../plan/junction.ts';
 import { resolveMoveEvents, type MoveEvents, type ResolvedEventSpec } from './events.ts';
@@ -134,7 +134,19 @@ function checkTrackRange(config: ResolvedConfig, end: readonly number[]): number
  * square underflows towards 0 (1e-300² is 0 in float64) and a segment's duration
  * outgrows what the wire can time.
  */
-export const MIN_SPEED = 1e-3;
+export const MIN_SPEED = LIMIT_RANGE.speed[0];
+/** The gentlest acceleration cap a move may ask for, mm/s²: as the machine limits (config/limits.ts). */
+export const MIN_ACCELERATION = LIMIT_RANGE.accel[0];
+
+/**
+ * With devices (the runtime sets it with the links' floor, net/runtime.ts), every
+ * segment of length > 0 lasts at least this long (s), whatever the links allow:
+ * TIMING carries whole µs, and a segment timed 0 µs for a length > 0 is one the
+ * reader refuses (it cannot cover distance in no time). Boundaries round by at most
+ * ½ µs each, so 2 µs never rounds to 0. Only a segment under 2 µs (a few nm at any
+ * speed a machine runs) is slowed by it.
+ */
+export const WIRE_MIN_SEGMENT_S = 2e-6;
 
 /** Lengths below this (mm) are treated as zero: such moves are skipped and counted. */
 export const ZERO_LENGTH_MM = 1e-9;
@@ -199,7 +211,7 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
   let maxAcceleration = Infinity;
   if (move.maxAcceleration !== undefined) {
     maxAcceleration = finite('maxAcceleration', move.maxAcceleration);
-    if (maxAcceleration <= 0) throw new MaxlError('MOVE_INVALID', 'must be positive (mm/s²)', 'maxAcceleration');
+    if (!(maxAcceleration >= MIN_ACCELERATION)) throw new MaxlError('MOVE_INVALID', `must be at least ${MIN_ACCELERATION} mm/s², got ${maxAcceleration}`, 'maxAcceleration');
   }
   return new ValidatedMove(end, maxVelocity, resolveMoveEvents(move.eventChannels, config.eventChannels), null, maxAcceleration, actuatorEnd);
 }

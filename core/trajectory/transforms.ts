@@ -18,8 +18,20 @@ import { MaxlError, configError } from '../errors.ts';
 import type { TransformConfig } from '../config/types.ts';
 
 export const DEFAULT_TRANSFORM_TOLERANCE_MM = 0.01;
+/**
+ * The finest tolerance a function transform may ask for (output units, mm): 0.1 µm,
+ * far below a step. A finer one (5e-324) would subdivide every move into the most
+ * pieces allowed.
+ */
+export const MIN_TRANSFORM_TOLERANCE_MM = 1e-4;
 /** Subdivision never goes deeper than 2^MAX_DEPTH pieces per segment, even near a singularity. */
 const MAX_DEPTH = 24;
+/**
+ * A move that needs more pieces than this to stay within the tolerance is refused
+ * (MOVE_INVALID), not queued as millions of segments: deep refinement at one
+ * singular point takes a few dozen, a whole move that fine is a mistake.
+ */
+export const MAX_PIECES_PER_MOVE = 10_000;
 
 export interface ResolvedTransform {
   type: TransformConfig['type'];
@@ -56,8 +68,8 @@ export function resolveTransforms(configs: TransformConfig[] | undefined, motion
       return index;
     });
     const tolerance = t.type === 'function' && t.tolerance !== undefined ? t.tolerance : DEFAULT_TRANSFORM_TOLERANCE_MM;
-    if (!(typeof tolerance === 'number' && tolerance > 0 && Number.isFinite(tolerance))) {
-      throw configError(`${field}.tolerance`, 'must be a positive number (output units, mm by default)');
+    if (!(typeof tolerance === 'number' && tolerance >= MIN_TRANSFORM_TOLERANCE_MM && Number.isFinite(tolerance))) {
+      throw configError(`${field}.tolerance`, `must be a finite number ≥ ${MIN_TRANSFORM_TOLERANCE_MM} (output units, mm by default), got ${String(tolerance)}`);
     }
     switch (t.type) {
       case 'corexy':
@@ -165,6 +177,13 @@ export function subdivisionFractions(
     }
     if (worst <= 1 || depth >= MAX_DEPTH) {
       fractions.push(f1);
+      if (fractions.length > MAX_PIECES_PER_MOVE + 1) {
+        throw new MaxlError(
+          'MOVE_INVALID',
+          `a nonlinear transform needs more than ${MAX_PIECES_PER_MOVE} pieces to follow this move within its tolerance: raise the tolerance or split the move`,
+          'endPosition',
+        );
+      }
       return;
     }
     const fm = (f0 + f1) / 2;

@@ -124,10 +124,31 @@ TEST(Events, QueueFullAddsNothing) {
     EXPECT_EQ(h.exchange(h.author.events(0, 0, index, batch)).reason, 0);
     index += 8;
   }
+  // One entry more than the room left: refused whole, with the room left in the detail.
+  const uint16_t room = MAXL_EVENT_CAPACITY - index;
   std::vector<msg::EventEntry> more;
-  for (int k = 0; k < MAXL_EVENT_CAPACITY - index + 1; k++) more.push_back({(uint32_t)(index + k) * 10, 0.0f});
+  for (int k = 0; k < room + 1; k++) more.push_back({(uint32_t)(index + k) * 10, -1.0f});
   Answer full = h.exchange(h.author.events(0, 0, index, more));
   EXPECT_EQ(full.reason, nack::QUEUE_FULL);
-  EXPECT_EQ(full.detail, MAXL_EVENT_CAPACITY - index);
+  EXPECT_EQ(full.detail, room);
   EXPECT_TRUE(h.device->statusFlags() & status_flag::EVENT_OVERFLOW);
+
+  // Nothing of it was added: the track still expects entry `index` next, and exactly
+  // `room` entries still fit (one more would not).
+  std::vector<msg::EventEntry> fits(more.begin(), more.begin() + room);
+  for (auto& e : fits) e.value = (float)(&e - &fits[0] + index);
+  if (room > 0) {
+    EXPECT_EQ(h.exchange(h.author.events(0, 0, (uint16_t)(index + 1), {fits[0]})).reason, nack::MALFORMED);  // not where the track is
+    EXPECT_EQ(h.exchange(h.author.events(0, 0, index, fits)).reason, 0);
+  }
+  EXPECT_EQ(h.exchange(h.author.events(0, 0, MAXL_EVENT_CAPACITY, {{(uint32_t)MAXL_EVENT_CAPACITY * 10, -1.0f}})).reason, nack::QUEUE_FULL);
+
+  // And the segment runs exactly the accepted changes, in order: 0, 1, …, capacity − 1, never −1.
+  gSeen.clear();
+  runTo(h, 0, 1000 + MAXL_EVENT_CAPACITY * 10 + 10);
+  ASSERT_EQ(gSeen.size(), (size_t)MAXL_EVENT_CAPACITY);
+  for (size_t k = 0; k < gSeen.size(); k++) {
+    EXPECT_EQ(gSeen[k].v, (float)k);
+    EXPECT_EQ(gSeen[k].t, 1000 + k * 10);
+  }
 }

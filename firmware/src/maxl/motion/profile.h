@@ -36,6 +36,17 @@ inline bool isFiniteFloat(float x) { return x - x == 0.0f; }
 //   wrap-safe), α negative or not finite,
 //   or a speed below zero by more than rounding explains (durations are
 //   whole µs: allow α·10 µs plus 10^-5 of the peak, in 1/s).
+// Why that is enough, and what it refuses: the author rounds each phase
+// boundary to the µs, so each duration is off by δk, |δk| ≤ 1 µs. Lengthening
+// phase k by δ adds ν(end of k)·δ + ck·α·δ·(time after k) to σ(T), so ν0, and
+// with it every boundary speed, moves by at most Σ|δk|·(peak/T + α), and the
+// boundary speeds also gain α·Σ|δk|: with 3 phases, 3 µs·peak/T + 6 µs·α. A
+// speed can only come near 0 in a segment that reaches its peak from rest or
+// falls to rest, within T, so peak ≤ α·T and the bound is 9 µs·α < 10 µs·α;
+// the 10^-5 of the peak covers float32 sums. A negative speed beyond that is
+// not rounding: the author timed the segment wrongly (a clock correction that
+// stretched the cruise of a segment at rest at an end made ν0 < 0; see
+// core/net/segmentEncoding.ts timingEntry), and refusing it is right.
 // `nuPeak` gets the largest |σ'| at any phase boundary, `nuEnd` σ'(T).
 bool solveProfile(Segment& seg, float& nuPeak, float& nuEnd);
 
