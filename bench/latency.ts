@@ -17,7 +17,7 @@ import { VirtualScheduler } from '../core/time/virtualScheduler.ts';
 import { createSimulatedMachine } from '../core/sim/machine.ts';
 import { nodeWasmLoader } from '../core/sim/device/nodeWasmLoader.ts';
 import { accelRig } from '../core/sim/presets/index.ts';
-import { seededRandom } from '../core/sim/random.ts';
+import { seededRandom } from '../core/random.ts';
 import { evaluateTiming } from '../core/plan/phases.ts';
 import type { Segment } from '../core/index.ts';
 

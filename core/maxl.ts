@@ -9,7 +9,7 @@ import { MaxlError } from './errors.ts';
 import type { Move, ValidatedMove } from './trajectory/moves.ts';
 import { TrajectoryQueue, type MoveReceipt } from './trajectory/queue.ts';
 import { TrajectoryHistory } from './trajectory/history.ts';
-import { Runtime, type DeviceReport, type RuntimeEvent } from './net/runtime.ts';
+import { Runtime, type DeviceReport, type RuntimeEvent } from './runtime.ts';
 import type { FeedLimit } from './net/linkFeedLimit.ts';
 import type { Link } from './net/link.ts';
 import type { DeviceInfo, SessionOptions } from './net/session.ts';
@@ -19,7 +19,7 @@ import { RealScheduler } from './time/realScheduler.ts';
 import type { SensorCapture } from './capture/sensorCapture.ts';
 import { captureToCsv } from './capture/csv.ts';
 import { restingSample, type TrajectorySample } from './trajectory/tracks.ts';
-import { actuatorPosition } from './trajectory/transforms.ts';
+import { actuatorPosition } from './config/transforms.ts';
 
 export interface MaxlOptions {
   /** mm per motion axis where the machine starts. Default: all zeros. */

@@ -10,7 +10,7 @@
  *    means the device rebooted (and forgot its queue).
  */
 import { MaxlError } from '../errors.ts';
-import { seededRandom } from '../sim/random.ts';
+import { seededRandom } from '../random.ts';
 import type { Scheduler, Timer } from '../time/scheduler.ts';
 import { ClockSync } from './clockSync.ts';
 import { encodeFrame, FrameReceiver, type RawPacket } from './frame.ts';

@@ -39,8 +39,6 @@ export interface MoveReceipt {
   skipped: boolean;
 }
 
-export const DEFAULT_QUEUE_CAPACITY = 512;
-
 /** The tracks of a segment that sets no event channel. */
 const NO_EVENTS: EventTrack[] = [];
 

@@ -13,11 +13,11 @@
 import { resolveLimits } from '../config/limits.ts';
 import type { LimitsConfig, ResolvedConfig } from '../config/types.ts';
 import { MaxlError } from '../errors.ts';
-import { phasesOf, timingDuration, type Phase } from './phases.ts';
-import { LookaheadPlanner } from './lookahead.ts';
-import { segmentsForMove, tailAfter, validateMove, type Move, type PathTail } from '../trajectory/moves.ts';
-import { sampleTimeline, type TrajectorySample } from '../trajectory/tracks.ts';
-import type { Segment } from '../trajectory/segment.ts';
+import { phasesOf, timingDuration, type Phase } from '../plan/phases.ts';
+import { LookaheadPlanner } from '../plan/lookahead.ts';
+import { segmentsForMove, tailAfter, validateMove, type Move, type PathTail } from './moves.ts';
+import { sampleTimeline, type TrajectorySample } from './tracks.ts';
+import type { Segment } from './segment.ts';
 
 export interface PlannedSegment {
   start: number[];
