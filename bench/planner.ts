@@ -13,6 +13,7 @@
 import os from 'node:os';
 import { createMAXL, planPath } from '../core/index.ts';
 import { benchPaths, BENCH_LIMITS, type BenchPath } from './paths.ts';
+import { queueOf } from '../core/maxl.ts';
 
 const RUNS = Number(process.env.BENCH_RUNS ?? 5);
 
@@ -27,7 +28,7 @@ function machineFor(path: BenchPath) {
 }
 
 async function incremental(maxl: ReturnType<typeof machineFor>, path: BenchPath): Promise<{ seconds: number; plannedDuration_s: number; segments: number }> {
-  const q = maxl.queue;
+  const q = queueOf(maxl);
   let plannedDuration = 0;
   let segments = 0;
   // The consumer a device session would be: lock the front segment, and retire what

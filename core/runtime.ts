@@ -161,7 +161,7 @@ export class Runtime {
       .filter((p) => p.readsTrajectory)
       .map((p) => {
         const session = this.sessions[infos.findIndex((i) => i.name === p.device)];
-        return { name: p.device, session, positionSlots: p.positionSlots, eventSlots: p.eventSlots, capacity: (session.info as DeviceInfo).segmentCapacity };
+        return { name: p.device, device: session, positionSlots: p.positionSlots, eventSlots: p.eventSlots, capacity: (session.info as DeviceInfo).segmentCapacity };
       });
     this.streamer = new Streamer(this.host.queue, this.scheduler, bindings, (e) => this.onStreamer(e), this.options.streamer);
     this.streamer.start();
