@@ -10,7 +10,7 @@
  */
 import { resolveConfig } from './config/validate.ts';
 import type { MaxlConfig, ResolvedConfig } from './config/types.ts';
-import { abortable, MaxlError } from './errors.ts';
+import { abortable, abortedError, MaxlError } from './errors.ts';
 import type { Move, ValidatedMove } from './trajectory/moves.ts';
 import { TrajectoryQueue, type MoveReceipt } from './trajectory/queue.ts';
 import { TrajectoryHistory } from './trajectory/history.ts';
@@ -106,7 +106,7 @@ export class Maxl {
     let validated: ValidatedMove;
     try {
       if (this.closed) throw new MaxlError('QUEUE_CLOSED', 'this MAXL instance was closed');
-      if (options.signal?.aborted) return this.trajectory.reserveSlot(options.signal) as Promise<never>;
+      if (options.signal?.aborted) throw abortedError(options.signal, 'the wait for room in the queue');
       validated = this.trajectory.validate(move, this.nextMoveStart);
     } catch (err) {
       return Promise.reject(err);
@@ -139,7 +139,7 @@ export class Maxl {
     if (signal?.aborted) {
       // Aborted after the slot came but before this turn: the move is still given up.
       this.trajectory.releaseSlot();
-      return this.trajectory.reserveSlot(signal) as Promise<never>;
+      throw abortedError(signal, 'the wait for room in the queue');
     }
     if (this.closed) {
       this.trajectory.releaseSlot();
