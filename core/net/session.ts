@@ -18,7 +18,7 @@ import { encodeFrame, FrameReceiver, type RawPacket } from './frame.ts';
 import type { Link } from './link.ts';
 import type { SendResult, StreamDevice } from './streamDevice.ts';
 import { decodePayload, type Message, type MessageOf, WireError } from './messages.ts';
-import { MessageType, NackReason, nameOf, NO_SESSION_DETAIL, PROTOCOL_VERSION, ReaderKind, type NackReasonName, type ReaderKindName } from './protocol.ts';
+import { MessageType, NackReason, nameOf, NO_SESSION_DETAIL, PROTOCOL_VERSION, ReaderKind, type ReaderKindName } from './protocol.ts';
 
 export interface ReaderInfo {
   index: number;
