@@ -14,7 +14,7 @@ import { abortable, abortedError, MaxlError } from './errors.ts';
 import type { Move, ValidatedMove } from './trajectory/moves.ts';
 import { TrajectoryQueue, type MoveReceipt } from './trajectory/queue.ts';
 import { TrajectoryHistory } from './trajectory/history.ts';
-import type { HistoryView, QueueView } from './trajectory/queueView.ts';
+import { readOnlyHistory, readOnlyQueue, type HistoryView, type QueueView } from './trajectory/queueView.ts';
 import { Runtime, type DeviceReport, type RuntimeEvent } from './runtime.ts';
 import type { FeedLimit } from './net/linkFeedLimit.ts';
 import type { Link } from './net/link.ts';
@@ -68,6 +68,7 @@ export class Maxl {
   /** Transmitted and historical segments, oldest first, as compact records (read-only). */
   readonly history: HistoryView;
   private readonly trajectory: TrajectoryQueue;
+  private readonly record: TrajectoryHistory;
   /** End of the last move still waiting for room, if any waits. */
   private pendingTail: number[] = [];
   private pendingCount = 0;
@@ -81,9 +82,10 @@ export class Maxl {
     }
     const c = this.config;
     const history = new TrajectoryHistory(c.motionAxes.length, c.actuatorAxes.length, c.eventChannels.length, options.historyLimit ?? 100_000);
-    this.history = history;
+    this.record = history;
+    this.history = readOnlyHistory(history);
     this.trajectory = new TrajectoryQueue(this.config, start, (seg) => history.push(seg));
-    this.queue = this.trajectory;
+    this.queue = readOnlyQueue(this.trajectory);
     queues.set(this, this.trajectory);
     this.scheduler = options.scheduler ?? new RealScheduler();
     this.runtimeOptions = options;
@@ -296,7 +298,7 @@ export class Maxl {
   captureCsv(key: string, channelNames?: string[]): string {
     const capture = this.captures.get(key);
     if (!capture) throw new MaxlError('CONFIG_INVALID', `no capture "${key}" (captures: ${[...this.captures.keys()].join(', ') || 'none'})`, 'capture');
-    const horizon = this.history.horizon_us;
+    const horizon = this.record.horizon_us;
     return captureToCsv(capture, { sample: (t) => (t < horizon ? null : this.sample(t)), motionAxes: this.config.motionAxes, channelNames });
   }
 
@@ -310,7 +312,7 @@ export class Maxl {
    * the machine rests at its start; between jobs, and after, at the last end.
    */
   sample(t_us: number): TrajectorySample {
-    const s = this.history.sample(t_us);
+    const s = this.record.sample(t_us);
     if (s !== null) return s;
     const p = this.trajectory.tailPosition;
     return restingSample(p, actuatorPosition(this.config.transforms, p));
@@ -332,7 +334,7 @@ export class Maxl {
   eventValue(channel: string, t_us: number): number {
     const c = this.config.eventChannels.indexOf(channel);
     if (c < 0) throw new MaxlError('CONFIG_INVALID', `"${channel}" is not an event channel`, 'channel');
-    return this.history.eventValue(c, t_us);
+    return this.record.eventValue(c, t_us);
   }
 }
 

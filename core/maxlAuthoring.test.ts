@@ -128,6 +128,27 @@ describe('editing the untransmitted tail through Maxl', () => {
   });
 });
 
+describe('the read-only views', () => {
+  it('maxl.queue and maxl.history follow the queue live, and hold none of its editing or executing methods', async () => {
+    const maxl = createMAXL(config(16));
+    for (const name of ['append', 'appendValidated', 'replace', 'cancel', 'cancelAll', 'cancelFrom', 'transmitNext', 'splitFront', 'brakeToRest', 'retireUntil', 'planToRest', 'reserveSlot']) {
+      expect(name in maxl.queue, name).toBe(false);
+    }
+    expect('push' in maxl.history).toBe(false);
+    await maxl.addSegmentToQueue({ endPosition: [10, 0] });
+    expect(maxl.queue.size).toBe(1);
+    expect(maxl.queue.tailPosition).toEqual([10, 0]);
+    const seen: string[] = [];
+    maxl.queue.subscribe((e) => seen.push(e.type));
+    queueOf(maxl).planToRest();
+    const seg = queueOf(maxl).transmitNext(0)!;
+    expect(seen).toContain('transmitted');
+    expect(maxl.queue.transmittedEnd_us).toBe(seg.endTime_us);
+    expect(maxl.history.size).toBe(1);
+    expect(maxl.history.sample(seg.endTime_us)?.position).toEqual([10, 0]);
+  });
+});
+
 describe('whenIdle with an AbortSignal', () => {
   it('gives up the wait with ABORTED while the machine goes on to finish', async () => {
     const b = await startMachine(blotPlotter());

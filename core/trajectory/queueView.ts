@@ -99,3 +99,60 @@ export interface HistoryView {
   /** An event channel's value at t_us. */
   eventValue(channel: number, t_us: number): number;
 }
+
+/**
+ * A view that forwards only QueueView's members to `queue`: what `maxl.queue` is, so
+ * that an app holds no reference to the queue's editing or executing methods.
+ */
+export function readOnlyQueue(queue: QueueView): QueueView {
+  return {
+    segments: () => queue.segments(),
+    get size() {
+      return queue.size;
+    },
+    get untransmittedCount() {
+      return queue.untransmittedCount;
+    },
+    get capacity() {
+      return queue.capacity;
+    },
+    hasRoom: () => queue.hasRoom(),
+    get: (id) => queue.get(id),
+    untransmittedAt: (i) => queue.untransmittedAt(i),
+    get tailPosition() {
+      return queue.tailPosition;
+    },
+    get transmittedEnd_us() {
+      return queue.transmittedEnd_us;
+    },
+    get transmittedEndsMoving() {
+      return queue.transmittedEndsMoving;
+    },
+    get skippedZeroLength() {
+      return queue.skippedZeroLength;
+    },
+    subscribe: (listener) => queue.subscribe(listener),
+  };
+}
+
+/** The same for the history: `maxl.history`. */
+export function readOnlyHistory(history: HistoryView): HistoryView {
+  return {
+    get capacity() {
+      return history.capacity;
+    },
+    get horizon_us() {
+      return history.horizon_us;
+    },
+    get pushed() {
+      return history.pushed;
+    },
+    get size() {
+      return history.size;
+    },
+    at: (i) => history.at(i),
+    indexAt: (t_us) => history.indexAt(t_us),
+    sample: (t_us) => history.sample(t_us),
+    eventValue: (channel, t_us) => history.eventValue(channel, t_us),
+  };
+}
