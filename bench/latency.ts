@@ -20,7 +20,6 @@ import { accelRig } from '../core/sim/presets/index.ts';
 import { seededRandom } from '../core/random.ts';
 import { evaluateTiming } from '../core/plan/phases.ts';
 import type { SegmentView } from '../core/index.ts';
-import { queueOf } from '../core/maxl.ts';
 
 const TRIALS = Number(process.env.TRIALS ?? 40);
 const random = seededRandom(5);
@@ -34,7 +33,7 @@ await ready;
 const stepsPerMm = preset.plant.motors[0].stepsPerMm;
 
 let lastSeg: SegmentView | null = null;
-queueOf(maxl).subscribe((e) => {
+maxl.queue.subscribe((e) => {
   if (e.type === 'transmitted' && lastSeg === null) lastSeg = e.segments[0]; // the move's first (maybe sliced) segment
 });
 

@@ -51,7 +51,7 @@ async function simulate(moves: Move[], source: PlotPath[]): Promise<{ simRun_s: 
   const minSegment_us = b.maxl.feedLimit?.minSegment_us ?? 0;
   const plotTimeOnLink_s = plotTime(moves, preset.config.motionAxes, [...START], preset.config.limits, minSegment_us);
   const sent: SegmentView[] = [];
-  queueOf(b.maxl).subscribe((e) => {
+  b.maxl.queue.subscribe((e) => {
     if (e.type === 'transmitted') sent.push(...e.segments);
   });
   await runJob(b, moves);

@@ -4,7 +4,7 @@
  *
  * The planner's three benchmark paths are planned and timed by the core, then
  * encoded for a device that reads one position track (GEOMETRY + TIMING, batched
- * as a session streams them). bytesPerLinearSegmentView = payload bytes per segment per
+ * as a session streams them). bytesPerLinearSegment = payload bytes per segment per
  * position track (the protocol's budget is 24; the public MAXL prototype used 52).
  * Framing (seq, type, CRC, COBS, delimiter) is reported separately.
  */
@@ -20,7 +20,7 @@ const COUNT = Number(process.env.SEGMENTS ?? 100_000);
 /** Segments per streamed batch: a session sends a few at a time, just in time. */
 const BATCH = 8;
 
-const perPath: Record<string, { segments: number; payloadBytesPerSegmentView: number; framedBytesPerSegmentView: number }> = {};
+const perPath: Record<string, { segments: number; payloadBytesPerSegment: number; framedBytesPerSegment: number }> = {};
 let worst = 0;
 for (const path of benchPaths(COUNT)) {
   const maxl = createMAXL({ motionAxes: ['x', 'y'], limits: BENCH_LIMITS }, { initialPosition: path.start, historyLimit: 1 });
@@ -47,7 +47,7 @@ for (const path of benchPaths(COUNT)) {
     queueOf(maxl).retireUntil(s.startTime_us);
   }
   if (batch.length) flush();
-  perPath[path.name] = { segments, payloadBytesPerSegmentView: +(payload / segments).toFixed(2), framedBytesPerSegmentView: +(framed / segments).toFixed(2) };
+  perPath[path.name] = { segments, payloadBytesPerSegment: +(payload / segments).toFixed(2), framedBytesPerSegment: +(framed / segments).toFixed(2) };
   worst = Math.max(worst, payload / segments);
 }
-console.log(JSON.stringify({ bytesPerLinearSegmentView: +worst.toFixed(2), bytesLimit: 24, positionTracks: 1, batch: BATCH, paths: perPath }));
+console.log(JSON.stringify({ bytesPerLinearSegment: +worst.toFixed(2), bytesLimit: 24, positionTracks: 1, batch: BATCH, paths: perPath }));

@@ -59,7 +59,7 @@ describe('dwell validation', () => {
   it('is refused by addSegmentToQueue with a rejected promise, nothing enqueued', async () => {
     const maxl = createMAXL(config());
     await expect(maxl.addSegmentToQueue({ dwell_s: -1 })).rejects.toMatchObject({ code: 'MOVE_INVALID', field: 'dwell_s' });
-    expect(queueOf(maxl).size).toBe(0);
+    expect(maxl.queue.size).toBe(0);
   });
 });
 

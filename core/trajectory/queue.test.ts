@@ -149,13 +149,13 @@ describe('bounded queue', () => {
     await Promise.resolve();
     await new Promise((r) => setImmediate(r));
     expect(added).toBe(3);
-    expect(queueOf(maxl).untransmittedCount).toBe(3);
+    expect(maxl.queue.untransmittedCount).toBe(3);
     const transmitted: number[] = [];
     while (transmitted.length < 10) {
       const seg = queueOf(maxl).transmitNext(0);
       if (seg) transmitted.push(seg.id);
       await new Promise((r) => setImmediate(r));
-      expect(queueOf(maxl).untransmittedCount).toBeLessThanOrEqual(3);
+      expect(maxl.queue.untransmittedCount).toBeLessThanOrEqual(3);
     }
     await loop;
     expect(added).toBe(10);
@@ -221,7 +221,7 @@ describe('bad input', () => {
     expect(r.segmentIds).toEqual([]);
     await maxl.addSegmentToQueue({ endPosition: [5, 5 + 1e-12] });
     expect(maxl.skippedZeroLength).toBe(2);
-    expect(queueOf(maxl).size).toBe(1);
+    expect(maxl.queue.size).toBe(1);
   });
 
   it('refuses moves outside the soft limits', () => {
@@ -229,7 +229,7 @@ describe('bad input', () => {
     expectCode(() => queueOf(maxl).append({ endPosition: [301, 0] }), 'SOFT_LIMIT', 'endPosition.x');
     expectCode(() => queueOf(maxl).append({ endPosition: [0, -0.001] }), 'SOFT_LIMIT', 'endPosition.y');
     queueOf(maxl).append({ endPosition: [300, 200] });
-    expect(queueOf(maxl).size).toBe(1);
+    expect(maxl.queue.size).toBe(1);
   });
 
   it('refuses a whole move a nonlinear transform would split when any part is bad', () => {
@@ -240,7 +240,7 @@ describe('bad input', () => {
       transforms: [{ type: 'function', from: ['x', 'y'], to: ['r', 'theta'], fn: ([x, y]) => [Math.hypot(x, y), Math.atan2(y, x)] }],
     });
     expectCode(() => queueOf(maxl).append({ endPosition: [50, 50], eventChannels: { nope: 1 } }), 'MOVE_INVALID', 'eventChannels.nope');
-    expect(queueOf(maxl).size).toBe(0);
+    expect(maxl.queue.size).toBe(0);
   });
 });
 
