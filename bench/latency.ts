@@ -28,7 +28,10 @@ const preset = accelRig();
 const sim = await createSimulatedMachine(preset, scheduler, { seed: 5, loader: nodeWasmLoader() });
 const maxl = createMAXL(sim.config, { links: Object.values(sim.links), scheduler });
 const ready = maxl.begin();
-await scheduler.runWhile(() => true, 2_000_000);
+// begin() takes its clock sync (2 s) and the hellos before it: run virtual time until it is done.
+let begun = false;
+void ready.then(() => (begun = true));
+await scheduler.runWhile(() => !begun, 10_000_000);
 await ready;
 const stepsPerMm = preset.plant.motors[0].stepsPerMm;
 
