@@ -17,9 +17,9 @@ import { VirtualScheduler } from '../core/time/virtualScheduler.ts';
 import { createSimulatedMachine } from '../core/sim/machine.ts';
 import { nodeWasmLoader } from '../core/sim/device/nodeWasmLoader.ts';
 import { accelRig } from '../core/sim/presets/index.ts';
-import { seededRandom } from '../core/sim/random.ts';
+import { seededRandom } from '../core/random.ts';
 import { evaluateTiming } from '../core/plan/phases.ts';
-import type { Segment } from '../core/index.ts';
+import type { SegmentView } from '../core/index.ts';
 
 const TRIALS = Number(process.env.TRIALS ?? 40);
 const random = seededRandom(5);
@@ -28,17 +28,20 @@ const preset = accelRig();
 const sim = await createSimulatedMachine(preset, scheduler, { seed: 5, loader: nodeWasmLoader() });
 const maxl = createMAXL(sim.config, { links: Object.values(sim.links), scheduler });
 const ready = maxl.begin();
-await scheduler.runWhile(() => true, 2_000_000);
+// begin() takes its clock sync (2 s) and the hellos before it: run virtual time until it is done.
+let begun = false;
+void ready.then(() => (begun = true));
+await scheduler.runWhile(() => !begun, 10_000_000);
 await ready;
 const stepsPerMm = preset.plant.motors[0].stepsPerMm;
 
-let lastSeg: Segment | null = null;
+let lastSeg: SegmentView | null = null;
 maxl.queue.subscribe((e) => {
   if (e.type === 'transmitted' && lastSeg === null) lastSeg = e.segments[0]; // the move's first (maybe sliced) segment
 });
 
 /** Time (s) for the segment's path to reach `distance` mm from its start. */
-function timeToReach(seg: Segment, distance: number): number {
+function timeToReach(seg: SegmentView, distance: number): number {
   let lo = 0;
   let hi = seg.duration_s;
   const state = { s: 0, v: 0, a: 0 };
@@ -71,7 +74,7 @@ for (let trial = 0; trial < TRIALS; trial++) {
       break;
     }
   }
-  const seg = lastSeg as Segment | null;
+  const seg = lastSeg as SegmentView | null;
   if (!seg || Number.isNaN(firstStep)) throw new Error(`trial ${trial}: no motion within 50 ms`);
   const started = firstStep - timeToReach(seg, 0.5 / stepsPerMm) * 1e6;
   latencies.push((started - t0) / 1000);

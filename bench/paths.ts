@@ -2,7 +2,7 @@
  * The benchmark paths shared by the planner and wire benchmarks, 100 000 segments
  * each unless asked otherwise. Deterministic: the random walk is seeded.
  */
-import { seededRandom } from '../core/sim/random.ts';
+import { seededRandom } from '../core/random.ts';
 
 export interface BenchPath {
   name: string;

@@ -24,7 +24,9 @@
  * worstPlanPathSpeedup the smallest planPath rate / incremental rate.
  */
 import os from 'node:os';
-import { createMAXL, DryRun, planPath } from '../core/index.ts';
+import { createMAXL, planPath } from '../core/index.ts';
+import { queueOf } from '../core/maxl.ts';
+import { DryRun } from '../core/trajectory/dryRun.ts';
 import { benchPaths, fineCircle, BENCH_LIMITS, type BenchPath } from './paths.ts';
 
 const RUNS = Number(process.env.BENCH_RUNS ?? 5);
@@ -49,8 +51,8 @@ function machineFor(path: BenchPath) {
 async function incremental(maxl: ReturnType<typeof machineFor>, path: BenchPath): Promise<Run> {
   // Back to the start first (one move), so every run plans the same path from rest.
   await maxl.addSegmentToQueue({ endPosition: path.start });
-  new DryRun(maxl.queue).finish();
-  const dry = new DryRun(maxl.queue);
+  new DryRun(queueOf(maxl)).finish();
+  const dry = new DryRun(queueOf(maxl));
   const t0 = performance.now();
   for (const p of path.points) {
     await maxl.addSegmentToQueue({ endPosition: p });

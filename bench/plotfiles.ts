@@ -23,7 +23,7 @@ import { readFileSync } from 'node:fs';
 import { createMAXL, type Move } from '../core/index.ts';
 import { blotPlotter } from '../core/sim/presets/index.ts';
 import { runJob, startMachine } from '../core/system/harness.ts';
-import type { Segment } from '../core/trajectory/segment.ts';
+import type { SegmentView } from '../core/index.ts';
 import type { PenSettings } from '../app/tools/plotter/penSequence.ts';
 import { arrange, DEFAULT_ARRANGEMENT, type Arrangement } from '../app/tools/plotter/files/arrange.ts';
 import { importGcode } from '../app/tools/plotter/files/gcodeImport.ts';
@@ -32,6 +32,7 @@ import { mergePaths, sortPaths } from '../app/tools/plotter/files/ordering.ts';
 import { pathFromPoints, travelLength, type PlotPath } from '../app/tools/plotter/files/paths.ts';
 import { plotJobMoves, plotTime } from '../app/tools/plotter/files/plotJob.ts';
 import { importSvg } from '../app/tools/plotter/files/svgImport.ts';
+import { queueOf } from '../core/maxl.ts';
 
 const preset = blotPlotter();
 const BED = { minX: 0, minY: 0, maxX: 125, maxY: 125 };
@@ -40,16 +41,16 @@ const START: [number, number] = [0, 0];
 
 function queuePlan(moves: readonly Move[]): number {
   const maxl = createMAXL({ ...preset.config, queueCapacity: moves.length + 10 });
-  for (const m of moves) maxl.queue.append(m);
-  maxl.queue.planToRest();
-  return maxl.queue.segments().reduce((t, s) => t + s.duration_s, 0);
+  for (const m of moves) queueOf(maxl).append(m);
+  queueOf(maxl).planToRest();
+  return queueOf(maxl).segments().reduce((t, s) => t + s.duration_s, 0);
 }
 
 async function simulate(moves: Move[], source: PlotPath[]): Promise<{ simRun_s: number; inkHausdorff_mm: number; plotTimeOnLink_s: number; minSegment_us: number }> {
   const b = await startMachine(preset, { sim: { outputLogSize: 200_000 } });
   const minSegment_us = b.maxl.feedLimit?.minSegment_us ?? 0;
   const plotTimeOnLink_s = plotTime(moves, preset.config.motionAxes, [...START], preset.config.limits, minSegment_us);
-  const sent: Segment[] = [];
+  const sent: SegmentView[] = [];
   b.maxl.queue.subscribe((e) => {
     if (e.type === 'transmitted') sent.push(...e.segments);
   });

@@ -8,12 +8,13 @@
  * position track (the protocol's budget is 24; the public MAXL prototype used 52).
  * Framing (seq, type, CRC, COBS, delimiter) is reported separately.
  */
-import { createMAXL, type Segment } from '../core/index.ts';
+import { createMAXL, type SegmentView } from '../core/index.ts';
 import { ClockMap } from '../core/net/clockMap.ts';
 import { encodeFrame } from '../core/net/frame.ts';
 import { encodePayload } from '../core/net/messages.ts';
 import { geometryMessages, timingMessages } from '../core/net/segmentEncoding.ts';
 import { benchPaths, BENCH_LIMITS } from './paths.ts';
+import { queueOf } from '../core/maxl.ts';
 
 const COUNT = Number(process.env.SEGMENTS ?? 100_000);
 /** Segments per streamed batch: a session sends a few at a time, just in time. */
@@ -23,13 +24,13 @@ const perPath: Record<string, { segments: number; payloadBytesPerSegment: number
 let worst = 0;
 for (const path of benchPaths(COUNT)) {
   const maxl = createMAXL({ motionAxes: ['x', 'y'], limits: BENCH_LIMITS }, { initialPosition: path.start, historyLimit: 1 });
-  for (const p of path.points) maxl.queue.append({ endPosition: p });
-  maxl.queue.planToRest();
+  for (const p of path.points) queueOf(maxl).append({ endPosition: p });
+  queueOf(maxl).planToRest();
   const clock = new ClockMap(0, 12345, 1.0001);
   let payload = 0;
   let framed = 0;
   let segments = 0;
-  let batch: Segment[] = [];
+  let batch: SegmentView[] = [];
   const flush = () => {
     const first = segments - batch.length + 1;
     const messages = [...geometryMessages(batch, [{ space: 'motion', index: 0 }], first, first === 1), ...timingMessages(batch, clock, first, first === 1, 3000)];
@@ -39,11 +40,11 @@ for (const path of benchPaths(COUNT)) {
     }
     batch = [];
   };
-  for (let s = maxl.queue.transmitNext(0); s; s = maxl.queue.transmitNext(0)) {
+  for (let s = queueOf(maxl).transmitNext(0); s; s = queueOf(maxl).transmitNext(0)) {
     batch.push(s);
     segments++;
     if (batch.length === BATCH) flush();
-    maxl.queue.retireUntil(s.startTime_us);
+    queueOf(maxl).retireUntil(s.startTime_us);
   }
   if (batch.length) flush();
   perPath[path.name] = { segments, payloadBytesPerSegment: +(payload / segments).toFixed(2), framedBytesPerSegment: +(framed / segments).toFixed(2) };

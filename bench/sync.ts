@@ -18,7 +18,7 @@ import { VirtualScheduler } from '../core/time/virtualScheduler.ts';
 import { createSimulatedMachine } from '../core/sim/machine.ts';
 import { nodeWasmLoader } from '../core/sim/device/nodeWasmLoader.ts';
 import { lightPainter } from '../core/sim/presets/index.ts';
-import { seededRandom } from '../core/sim/random.ts';
+import { seededRandom } from '../core/random.ts';
 import { u32Diff } from '../core/net/clockMap.ts';
 
 const HOUR_US = Number(process.env.SYNC_SECONDS ?? 3600) * 1e6;

@@ -20,7 +20,9 @@ export type MaxlErrorCode =
   | 'BUFFER_CONFLICT'
   /** streaming broke off for a reason of the author's own (not a device's): a bug, said plainly rather than thrown from a timer */
   | 'STREAM_FAILED'
-  | 'NOT_STARTED';
+  | 'NOT_STARTED'
+  /** A wait was given up through its AbortSignal (addSegmentToQueue, whenIdle): nothing was changed by it. */
+  | 'ABORTED';
 
 export class MaxlError extends Error {
   readonly code: MaxlErrorCode;
@@ -37,4 +39,34 @@ export class MaxlError extends Error {
 /** Shorthand for the most common case: a config field that is wrong. */
 export function configError(field: string, message: string): MaxlError {
   return new MaxlError('CONFIG_INVALID', message, field);
+}
+
+/** The MaxlError (code ABORTED) for a wait given up through `signal`: its reason in words, if it gave one. */
+export function abortedError(signal: AbortSignal, what: string): MaxlError {
+  const reason: unknown = signal.reason;
+  const why = reason instanceof Error && reason.name !== 'AbortError' ? `: ${reason.message}` : typeof reason === 'string' ? `: ${reason}` : '';
+  return new MaxlError('ABORTED', `${what} was aborted${why}`);
+}
+
+/**
+ * `promise`, or a rejection with abortedError as soon as `signal` aborts (at once if
+ * it already has). The work behind `promise` goes on; only this wait ends.
+ */
+export function abortable<T>(promise: Promise<T>, signal: AbortSignal | undefined, what: string): Promise<T> {
+  if (!signal) return promise;
+  if (signal.aborted) return Promise.reject(abortedError(signal, what));
+  return new Promise<T>((resolve, reject) => {
+    const onAbort = () => reject(abortedError(signal, what));
+    signal.addEventListener('abort', onAbort, { once: true });
+    promise.then(
+      (value) => {
+        signal.removeEventListener('abort', onAbort);
+        resolve(value);
+      },
+      (err: unknown) => {
+        signal.removeEventListener('abort', onAbort);
+        reject(err);
+      },
+    );
+  });
 }

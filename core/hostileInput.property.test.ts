@@ -15,7 +15,7 @@
  */
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { createMAXL, type Maxl } from './maxl.ts';
+import { createMAXL, queueOf, type Maxl } from './maxl.ts';
 import { MaxlError } from './errors.ts';
 import type { MaxlConfig, TransformConfig } from './config/types.ts';
 import { WIRE_MIN_SEGMENT_S, type Move } from './trajectory/moves.ts';
@@ -162,7 +162,7 @@ function expectMaxlError(err: unknown, what: string): void {
 
 /** Everything a refused call must leave as it was. */
 function snapshot(maxl: Maxl): string {
-  const q = maxl.queue;
+  const q = queueOf(maxl);
   return JSON.stringify({
     segments: q.segments().map((s) => [s.id, s.moveId, s.state, s.start, s.end, s.length, s.dwell_s, s.entry2, s.exit2, s.timing]),
     untransmitted: q.untransmittedCount,
@@ -189,7 +189,7 @@ const reached = { machines: 0, refusedMoves: 0, acceptedMoves: 0, framesChecked:
 
 /** Locks every accepted segment and checks what the streamer would send for them. */
 function checkTheWire(maxl: Maxl): void {
-  const q = maxl.queue;
+  const q = queueOf(maxl);
   q.planToRest();
   const segments: Segment[] = [];
   for (;;) {
@@ -255,8 +255,8 @@ describe('hostile input to the core', () => {
           return;
         }
         reached.machines++;
-        // The floor begin() sets with devices (net/runtime.ts); the wire's own floor, on a link that does not say its speed.
-        maxl.queue.setMinSegmentDuration(WIRE_MIN_SEGMENT_S);
+        // The floor begin() sets with devices (core/runtime.ts); the wire's own floor, on a link that does not say its speed.
+        queueOf(maxl).setMinSegmentDuration(WIRE_MIN_SEGMENT_S);
         for (const m of moves) {
           const before = snapshot(maxl);
           let result: Promise<unknown>;

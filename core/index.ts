@@ -2,7 +2,7 @@
  * The MAXL core: the trajectory author. Pure TypeScript with no DOM; it runs in
  * Node, in a Web Worker or in a page.
  */
-export { createMAXL, Maxl, type MaxlOptions } from './maxl.ts';
+export { createMAXL, Maxl, type MaxlOptions, type WaitOptions } from './maxl.ts';
 export {
   planPath,
   type PlannedPath,
@@ -12,7 +12,7 @@ export {
   type PathDwell,
   type PathSample,
   type PlanPathOptions,
-} from './plan/planPath.ts';
+} from './trajectory/planPath.ts';
 export { MaxlError, type MaxlErrorCode } from './errors.ts';
 export { resolveConfig } from './config/validate.ts';
 export type {
@@ -27,9 +27,10 @@ export type {
 export type { Move, LinearMove, DwellMove } from './trajectory/moves.ts';
 export { isDwell, MAX_DWELL_S } from './trajectory/moves.ts';
 export type { MoveEvents, EvaluatorState, EventEvaluatorSpec, EventTrack } from './trajectory/events.ts';
-export { TrajectoryQueue, type MoveReceipt, type QueueEvent, type QueueListener } from './trajectory/queue.ts';
-export { DryRun } from './trajectory/dryRun.ts';
-export { Segment, type SegmentState } from './trajectory/segment.ts';
+// The trajectory as apps read it (maxl.queue, maxl.history): read-only views. Maxl authors it.
+export type { MoveReceipt } from './trajectory/queue.ts';
+export type { QueueView, QueueViewEvent, QueueEventType, SegmentView, HistoryView } from './trajectory/queueView.ts';
+export type { SegmentState } from './trajectory/segment.ts';
 export type { TrajectorySample } from './trajectory/tracks.ts';
 export { evaluateTiming, phasesOf, timingDuration, type Phase, type Timing } from './plan/phases.ts';
 
@@ -37,7 +38,8 @@ export { evaluateTiming, phasesOf, timingDuration, type Phase, type Timing } fro
 export type { Link } from './net/link.ts';
 export { MAXL_DEFAULT_BAUD, uartBytesPerSecond } from './net/link.ts';
 export type { DeviceInfo, ReaderInfo, SessionOptions } from './net/session.ts';
-export type { DeviceReport, RuntimeEvent } from './net/runtime.ts';
+export type { ReaderKindName } from './net/protocol.ts';
+export type { DeviceReport, RuntimeEvent } from './runtime.ts';
 export { bytesPerSegment, feedLimit, LINK_SHARE, type FeedLimit, type LinkLoad } from './net/linkFeedLimit.ts';
 export type { StreamerOptions } from './net/streamer.ts';
 export type { Scheduler, Timer } from './time/scheduler.ts';

@@ -2,14 +2,20 @@
  * createMAXL: the author object of the paper (Listings 1, 2 and 5). It validates
  * the machine config, owns the trajectory queue, and reads the trajectory's
  * tracks at any time.
+ *
+ * Maxl is the queue's only author: moves are added, replaced and cancelled here,
+ * validated against the path as it will stand. Apps read the queue through
+ * `maxl.queue` and `maxl.history` (read-only views, trajectory/queueView.ts); the
+ * runtime's streamer locks, splits and retires segments inside the core.
  */
 import { resolveConfig } from './config/validate.ts';
 import type { MaxlConfig, ResolvedConfig } from './config/types.ts';
-import { MaxlError } from './errors.ts';
+import { abortable, abortedError, MaxlError } from './errors.ts';
 import type { Move, ValidatedMove } from './trajectory/moves.ts';
 import { TrajectoryQueue, type MoveReceipt } from './trajectory/queue.ts';
 import { TrajectoryHistory } from './trajectory/history.ts';
-import { Runtime, type DeviceReport, type RuntimeEvent } from './net/runtime.ts';
+import { readOnlyHistory, readOnlyQueue, type HistoryView, type QueueView } from './trajectory/queueView.ts';
+import { Runtime, type DeviceReport, type RuntimeEvent } from './runtime.ts';
 import type { FeedLimit } from './net/linkFeedLimit.ts';
 import type { Link } from './net/link.ts';
 import type { DeviceInfo, SessionOptions } from './net/session.ts';
@@ -19,7 +25,7 @@ import { RealScheduler } from './time/realScheduler.ts';
 import type { SensorCapture } from './capture/sensorCapture.ts';
 import { captureToCsv } from './capture/csv.ts';
 import { restingSample, type TrajectorySample } from './trajectory/tracks.ts';
-import { actuatorPosition } from './trajectory/transforms.ts';
+import { actuatorPosition } from './config/transforms.ts';
 
 export interface MaxlOptions {
   /** mm per motion axis where the machine starts. Default: all zeros. */
@@ -46,11 +52,23 @@ export interface MaxlOptions {
   linkFeedLimit?: boolean;
 }
 
+/** How long a call may wait, and how to give up waiting. */
+export interface WaitOptions {
+  /** Aborting it rejects the wait with a MaxlError of code ABORTED, having changed nothing. */
+  signal?: AbortSignal;
+}
+
+/** The queue of each Maxl, for the core's own tests and benches (queueOf). */
+const queues = new WeakMap<Maxl, TrajectoryQueue>();
+
 export class Maxl {
   readonly config: ResolvedConfig;
-  readonly queue: TrajectoryQueue;
-  /** Transmitted and historical segments, oldest first, as compact records. */
-  readonly history: TrajectoryHistory;
+  /** The trajectory queue, read-only: segments ahead and their states, the transmitted horizon, events. */
+  readonly queue: QueueView;
+  /** Transmitted and historical segments, oldest first, as compact records (read-only). */
+  readonly history: HistoryView;
+  private readonly trajectory: TrajectoryQueue;
+  private readonly record: TrajectoryHistory;
   /** End of the last move still waiting for room, if any waits. */
   private pendingTail: number[] = [];
   private pendingCount = 0;
@@ -63,57 +81,111 @@ export class Maxl {
       throw new MaxlError('MOVE_DIMENSION', `must give ${this.config.motionAxes.length} finite positions`, 'initialPosition');
     }
     const c = this.config;
-    this.history = new TrajectoryHistory(c.motionAxes.length, c.actuatorAxes.length, c.eventChannels.length, options.historyLimit ?? 100_000);
-    this.queue = new TrajectoryQueue(this.config, start, (seg) => this.history.push(seg));
+    const history = new TrajectoryHistory(c.motionAxes.length, c.actuatorAxes.length, c.eventChannels.length, options.historyLimit ?? 100_000);
+    this.record = history;
+    this.history = readOnlyHistory(history);
+    this.trajectory = new TrajectoryQueue(this.config, start, (seg) => history.push(seg));
+    this.queue = readOnlyQueue(this.trajectory);
+    queues.set(this, this.trajectory);
     this.scheduler = options.scheduler ?? new RealScheduler();
     this.runtimeOptions = options;
   }
 
   /** Where the next move will start: after the moves waiting for room, or at the queue's tail. */
   get nextMoveStart(): readonly number[] {
-    return this.pendingCount > 0 ? this.pendingTail : this.queue.tailPosition;
+    return this.pendingCount > 0 ? this.pendingTail : this.trajectory.tailPosition;
   }
 
   /**
    * Validates the move at once (a bad move rejects, and nothing is enqueued), then
    * resolves when the queue had room for it. Awaiting each call paces a loop to the
    * machine (paper, Listing 2). Calls that are not awaited keep their order.
+   *
+   * `signal` gives up a wait for room: the call rejects with a MaxlError of code
+   * ABORTED and the move is never queued (a move already queued is not taken back).
    */
-  addSegmentToQueue(move: Move): Promise<MoveReceipt> {
+  addSegmentToQueue(move: Move, options: WaitOptions = {}): Promise<MoveReceipt> {
     let validated: ValidatedMove;
     try {
       if (this.closed) throw new MaxlError('QUEUE_CLOSED', 'this MAXL instance was closed');
-      validated = this.queue.validate(move, this.nextMoveStart);
+      if (options.signal?.aborted) throw abortedError(options.signal, 'the wait for room in the queue');
+      validated = this.trajectory.validate(move, this.nextMoveStart);
     } catch (err) {
       return Promise.reject(err);
     }
     // Fast path: room now and nobody waiting, so no extra turn of the event loop.
-    if (this.pendingCount === 0 && this.queue.hasRoom()) {
+    if (this.pendingCount === 0 && this.trajectory.hasRoom()) {
       try {
-        return Promise.resolve(this.queue.appendValidated(validated));
+        return Promise.resolve(this.trajectory.appendValidated(validated));
       } catch (err) {
         // A nonlinear transform failing inside the move's subdivision: refused, nothing queued.
         return Promise.reject(err);
       }
     }
-    return this.appendWhenRoom(validated);
+    return this.appendWhenRoom(validated, options.signal);
   }
 
-  private async appendWhenRoom(validated: ValidatedMove): Promise<MoveReceipt> {
+  private async appendWhenRoom(validated: ValidatedMove, signal: AbortSignal | undefined): Promise<MoveReceipt> {
+    const previousTail = this.pendingTail;
     this.pendingTail = validated.end;
     this.pendingCount++;
     try {
-      await this.queue.reserveSlot();
+      await this.trajectory.reserveSlot(signal);
+    } catch (err) {
+      // Given up: the next move starts where this one would have (the last waiting move's end, or the queue's tail).
+      if (this.pendingTail === validated.end) this.pendingTail = previousTail;
+      throw err;
     } finally {
       this.pendingCount--;
     }
-    if (this.closed) throw new MaxlError('QUEUE_CLOSED', 'this MAXL instance was closed while the move waited for room');
-    return this.queue.appendValidated(validated, true);
+    if (signal?.aborted) {
+      // Aborted after the slot came but before this turn: the move is still given up.
+      this.trajectory.releaseSlot();
+      throw abortedError(signal, 'the wait for room in the queue');
+    }
+    if (this.closed) {
+      this.trajectory.releaseSlot();
+      throw new MaxlError('QUEUE_CLOSED', 'this MAXL instance was closed while the move waited for room');
+    }
+    return this.trajectory.appendValidated(validated, true);
+  }
+
+  /**
+   * Replaces an untransmitted move (all its segments) by `move`, validated from where
+   * that move starts; later moves keep their end positions. For editing the unsent
+   * tail point by point (a live stroke's last point moving). Throws SEGMENT_LOCKED
+   * once any part of the move was transmitted, CANNOT_STOP_IN_PATH if the moving
+   * machine would be left without room to brake, and changes nothing then.
+   */
+  replaceMove(moveId: number, move: Move): MoveReceipt {
+    this.open();
+    return this.trajectory.replace(moveId, move);
+  }
+
+  /** Cancels an untransmitted move; the moves after it now start where the one before it ended. Refused as replaceMove is. */
+  cancelMove(moveId: number): void {
+    this.open();
+    this.trajectory.cancel(moveId);
+  }
+
+  /**
+   * Cancels an untransmitted move and every queued move after it: the path ends
+   * where the move began. Moves still waiting for room (addSegmentToQueue not yet
+   * resolved) are not queued yet, and are not cancelled: abort them through their
+   * signal. Refused as replaceMove is.
+   */
+  cancelMovesFrom(moveId: number): void {
+    this.open();
+    this.trajectory.cancelMovesFrom(moveId);
+  }
+
+  private open(): void {
+    if (this.closed) throw new MaxlError('QUEUE_CLOSED', 'this MAXL instance was closed');
   }
 
   /** Zero-length moves skipped so far (those that set no event: one that does is a 0-s dwell). */
   get skippedZeroLength(): number {
-    return this.queue.skippedZeroLength;
+    return this.trajectory.skippedZeroLength;
   }
 
   /** Refuses further moves. */
@@ -134,7 +206,8 @@ export class Maxl {
   async begin(): Promise<DeviceInfo[]> {
     if (this.runtime) throw new MaxlError('NOT_STARTED', 'begin() was already called');
     const o = this.runtimeOptions;
-    this.runtime = new Runtime(this, {
+    const host = { config: this.config, queue: this.trajectory, sample: (t_us: number) => this.sample(t_us) };
+    this.runtime = new Runtime(host, {
       links: o.links ?? [],
       scheduler: this.scheduler,
       session: o.session,
@@ -193,9 +266,12 @@ export class Maxl {
     return this.started().halt();
   }
 
-  /** Resolves when everything queued has run. */
-  whenIdle(): Promise<void> {
-    return this.started().whenIdle();
+  /**
+   * Resolves when everything queued has run (or the machine holds at rest after a
+   * pause). `signal` gives up the wait: a MaxlError of code ABORTED; the machine goes on.
+   */
+  whenIdle(options: WaitOptions = {}): Promise<void> {
+    return abortable(this.started().whenIdle(), options.signal, 'the wait for the machine to be idle');
   }
 
   async end(): Promise<void> {
@@ -222,7 +298,7 @@ export class Maxl {
   captureCsv(key: string, channelNames?: string[]): string {
     const capture = this.captures.get(key);
     if (!capture) throw new MaxlError('CONFIG_INVALID', `no capture "${key}" (captures: ${[...this.captures.keys()].join(', ') || 'none'})`, 'capture');
-    const horizon = this.history.horizon_us;
+    const horizon = this.record.horizon_us;
     return captureToCsv(capture, { sample: (t) => (t < horizon ? null : this.sample(t)), motionAxes: this.config.motionAxes, channelNames });
   }
 
@@ -236,9 +312,9 @@ export class Maxl {
    * the machine rests at its start; between jobs, and after, at the last end.
    */
   sample(t_us: number): TrajectorySample {
-    const s = this.history.sample(t_us);
+    const s = this.record.sample(t_us);
     if (s !== null) return s;
-    const p = this.queue.tailPosition;
+    const p = this.trajectory.tailPosition;
     return restingSample(p, actuatorPosition(this.config.transforms, p));
   }
 
@@ -258,8 +334,18 @@ export class Maxl {
   eventValue(channel: string, t_us: number): number {
     const c = this.config.eventChannels.indexOf(channel);
     if (c < 0) throw new MaxlError('CONFIG_INVALID', `"${channel}" is not an event channel`, 'channel');
-    return this.history.eventValue(c, t_us);
+    return this.record.eventValue(c, t_us);
   }
+}
+
+/**
+ * The queue behind `maxl`, with its executing and editing methods: for the core's
+ * own tests and benches, which drain a queue without devices. Not part of the
+ * public API (core/index.ts does not export it): apps read `maxl.queue` and author
+ * through Maxl.
+ */
+export function queueOf(maxl: Maxl): TrajectoryQueue {
+  return queues.get(maxl) as TrajectoryQueue;
 }
 
 export function createMAXL(config: MaxlConfig, options?: MaxlOptions): Maxl {

@@ -17,6 +17,7 @@ import type { Message } from '../core/net/messages.ts';
 import { PROTOCOL_VERSION, ReaderKind } from '../core/net/protocol.ts';
 import { geometryMessages, timingMessages, type PositionSlot } from '../core/net/segmentEncoding.ts';
 import { PHASE_STRIDE } from '../core/plan/phases.ts';
+import { queueOf } from '../core/maxl.ts';
 
 export const FIXTURE_PATH = fileURLToPath(new URL('../firmware/test/fixtures/segments.json', import.meta.url));
 
@@ -98,11 +99,11 @@ const CASES: CaseSpec[] = [
 
 function buildCase(spec: CaseSpec): FixtureCase {
   const maxl = createMAXL(spec.config, { initialPosition: spec.start });
-  for (const p of spec.path) maxl.queue.append(Array.isArray(p) ? { endPosition: p } : p);
-  maxl.queue.planToRest();
+  for (const p of spec.path) queueOf(maxl).append(Array.isArray(p) ? { endPosition: p } : p);
+  queueOf(maxl).planToRest();
   const author0 = 1_000_000; // the job starts 1 s into the author's clock
   const segments = [];
-  for (let s = maxl.queue.transmitNext(author0); s; s = maxl.queue.transmitNext(author0)) segments.push(s);
+  for (let s = queueOf(maxl).transmitNext(author0); s; s = queueOf(maxl).transmitNext(author0)) segments.push(s);
   const clock = new ClockMap(0, spec.clock.offset_us, 1 + spec.clock.ppm * 1e-6);
 
   const c = maxl.config;

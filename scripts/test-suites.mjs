@@ -7,7 +7,7 @@ export const suites = [
   },
   {
     name: 'unit',
-    describe: 'vitest: the core (planner property tests, queue, tracks, codec vectors, sessions, clock sync, serialport link), the app units, and the simulated machine end to end in virtual time',
+    describe: 'vitest: the core (its layers: no import cycle or upward import, planner property tests, queue, tracks, codec vectors, sessions, clock sync, serialport link), the app units, and the simulated machine end to end in virtual time',
     command: ['npx', 'vitest', 'run'],
     tools: ['socat'],
   },

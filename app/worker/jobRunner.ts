@@ -3,11 +3,12 @@
  * its whole path, feeds its moves into the bounded queue as room frees up, and
  * follows its progress from the segments that finish.
  *
- * Moves are only handed over while the queue has room, synchronously (the core's
- * fast path), so a cancel or a STOP between two moves is never overtaken by a
- * move that was waiting for room.
+ * Each run has an AbortController: the feed awaits each addSegmentToQueue (which
+ * waits for room when the queue is full) and then whenIdle, both with its signal.
+ * A cancel, a STOP or a failure aborts it first, so a move still waiting for room
+ * is dropped, never queued behind the stop; no timer polls for either.
  */
-import { isDwell, type Maxl, type Move, type Segment } from '../../core/index.ts';
+import { isDwell, MaxlError, type Maxl, type Move, type SegmentView } from '../../core/index.ts';
 import { errorWords } from './errorWords.ts';
 import { patternPoints } from './jobPatterns.ts';
 import type { JobPhase, JobProgress, JobRequest, LogLevel } from './protocol.ts';
@@ -42,6 +43,10 @@ interface Run {
   phase: JobPhase;
   /** No more moves are fed once set (cancel, STOP, a failure). */
   stopped: boolean;
+  /** Aborted when the run stops: ends the feed's wait for room and its wait for the end. */
+  readonly abort: AbortController;
+  /** Resolves the wait of a paused run, on resume. */
+  wake: (() => void) | null;
   fed: number;
   firstMoveId: number;
   lastDoneMoveId: number;
@@ -56,7 +61,6 @@ const FEED_SLICE_MS = 4;
 
 export class JobRunner {
   private run: Run | null = null;
-  private watch: ReturnType<typeof setInterval> | null = null;
 
   constructor(private readonly host: JobHost) {}
 
@@ -177,6 +181,8 @@ export class JobRunner {
       ...r,
       phase: 'loading',
       stopped: false,
+      abort: new AbortController(),
+      wake: null,
       fed: 0,
       firstMoveId: 0,
       lastDoneMoveId: 0,
@@ -187,8 +193,9 @@ export class JobRunner {
     this.host.log('info', 'JOB', `“${r.name}”: ${summary}, ${r.totalLength.toFixed(0)} mm.`);
     const run = this.run;
     run.phase = 'running';
-    void this.feed(run).catch((err) => this.fail(run, err));
-    this.startWatch();
+    void this.feed(run).catch((err) => {
+      if (!(err instanceof MaxlError && err.code === 'ABORTED')) this.fail(run, err);
+    });
   }
 
   pause(): void {
@@ -208,12 +215,13 @@ export class JobRunner {
     if (!r || (r.phase !== 'paused' && r.phase !== 'pausing')) return;
     r.maxl.resume();
     r.phase = 'running';
+    r.wake?.();
   }
 
   cancel(): void {
     const r = this.run;
     if (!r || !this.active) return;
-    r.stopped = true;
+    this.stop(r);
     r.phase = 'cancelling';
     r.maxl.cancel().then(
       () => {
@@ -228,7 +236,7 @@ export class JobRunner {
   halted(): void {
     const r = this.run;
     if (!r || !this.active) return;
-    r.stopped = true;
+    this.stop(r);
     r.phase = 'halted';
   }
 
@@ -236,7 +244,7 @@ export class JobRunner {
   abort(reason: string): void {
     const r = this.run;
     if (!r || !this.active) return;
-    r.stopped = true;
+    this.stop(r);
     r.phase = 'failed';
     this.host.log('error', 'JOB_FAILED', `“${r.name}” stopped: ${reason}`);
   }
@@ -248,7 +256,7 @@ export class JobRunner {
   }
 
   /** A segment finished (from the snapshot builder). */
-  onHistorical(seg: Segment): void {
+  onHistorical(seg: SegmentView): void {
     const r = this.run;
     if (!r || r.firstMoveId === 0 || seg.moveId < r.firstMoveId) return;
     r.doneLength += seg.length;
@@ -256,66 +264,62 @@ export class JobRunner {
     if (seg.moveId > r.lastDoneMoveId) r.lastDoneMoveId = seg.moveId;
   }
 
+  /**
+   * Feeds the moves in order, each awaited (a full queue makes it wait for room),
+   * then waits for the machine to finish them. A stop aborts both waits.
+   */
   private async feed(r: Run): Promise<void> {
     const { maxl } = r;
-    const queue = maxl.queue;
+    const { signal } = r.abort;
     let sliceStart = performance.now();
     for (let i = 0; i < r.count; i++) {
-      while (!r.stopped && !queue.hasRoom()) await roomIn(maxl, r);
-      if (r.stopped) return;
-      const queued = maxl.addSegmentToQueue(r.moveAt(i));
+      const receipt = await maxl.addSegmentToQueue(r.moveAt(i), { signal });
       r.fed = i + 1;
-      if (i === 0) r.firstMoveId = (await queued).moveId;
-      else queued.catch((err) => this.fail(r, err));
+      if (i === 0) r.firstMoveId = receipt.moveId;
+      // Moves that find room are queued without a turn of the event loop: let commands in now and then.
       if (performance.now() - sliceStart > FEED_SLICE_MS) {
         await yieldToEvents();
         sliceStart = performance.now();
+        if (signal.aborted) return;
       }
+    }
+    await this.finished(r);
+    if (r.phase !== 'running') return;
+    r.phase = 'done';
+    this.host.log('info', 'JOB', `“${r.name}” done: ${r.count.toLocaleString('en')} segments in ${r.motion_s.toFixed(1)} s of motion.`);
+  }
+
+  /**
+   * Resolves once everything fed has run. The machine is also idle while a pause
+   * holds it at rest, so a paused run waits for resume() and then for idle again.
+   */
+  private async finished(r: Run): Promise<void> {
+    const { signal } = r.abort;
+    for (;;) {
+      await r.maxl.whenIdle({ signal });
+      if (r.phase !== 'paused' && r.phase !== 'pausing') return;
+      await new Promise<void>((resolve) => {
+        r.wake = resolve;
+        signal.addEventListener('abort', () => resolve(), { once: true });
+      });
+      r.wake = null;
+      if (signal.aborted) return;
     }
   }
 
-  /** Watches for the end of the job while it is active. */
-  private startWatch(): void {
-    if (this.watch) return;
-    this.watch = setInterval(() => {
-      const r = this.run;
-      if (!r || !this.active) {
-        if (this.watch) clearInterval(this.watch);
-        this.watch = null;
-        return;
-      }
-      const q = r.maxl.queue;
-      if (r.phase === 'running' && r.fed === r.count && q.untransmittedCount === 0 && q.transmittedEnd_us <= r.maxl.scheduler.now()) {
-        r.phase = 'done';
-        this.host.log('info', 'JOB', `“${r.name}” done: ${r.count.toLocaleString('en')} segments in ${r.motion_s.toFixed(1)} s of motion.`);
-      }
-    }, 50);
+  /** No more moves for this run: the waits for room and for the end give up. */
+  private stop(r: Run): void {
+    r.stopped = true;
+    r.abort.abort();
   }
 
   private fail(r: Run, err: unknown): void {
     if (r.stopped && r.phase !== 'running') return;
-    r.stopped = true;
+    this.stop(r);
     r.phase = 'failed';
     const words = errorWords(err);
     this.host.log('error', words.code, `“${r.name}” stopped: ${words.message}`);
   }
-}
-
-/** Resolves when the queue may have room again (a segment was transmitted or removed), or the run stopped. */
-function roomIn(maxl: Maxl, r: Run): Promise<void> {
-  return new Promise((resolve) => {
-    const timer = setInterval(() => {
-      if (r.stopped) done();
-    }, 20);
-    const unsubscribe = maxl.queue.subscribe((e) => {
-      if (e.type === 'transmitted' || e.type === 'removed') done();
-    });
-    function done() {
-      clearInterval(timer);
-      unsubscribe();
-      resolve();
-    }
-  });
 }
 
 /**

@@ -10,7 +10,7 @@
  * once the last one arrived, so snapshots never queue up and never outpace frames.
  */
 import type { CaptureCommand, CaptureEvent } from '../tools/capture/protocol.ts';
-import type { MaxlConfig, TransformConfig } from '../../core/index.ts';
+import type { MaxlConfig, ReaderKindName, TransformConfig } from '../../core/index.ts';
 import type { LightpaintCommand, LightpaintEvent } from '../tools/lightpaint/protocol.ts';
 import type { FileCommand, FileEvent } from '../tools/plotter/files/protocol.ts';
 import type { PlotterCommand, PlotterEvent } from '../tools/plotter/protocol.ts';
@@ -26,7 +26,7 @@ export type MachineConfig = Omit<MaxlConfig, 'transforms'> & {
   transforms?: Exclude<TransformConfig, { type: 'function' }>[];
 };
 
-export type ReaderKindName = 'position' | 'velocity' | 'acceleration' | 'event' | 'sensor';
+export type { ReaderKindName };
 
 export interface ReaderView {
   name: string;

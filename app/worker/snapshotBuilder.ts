@@ -8,7 +8,7 @@
  *   - untransmitted segments (planned and unplanned, at most a queue's capacity)
  *     are sent whole, and only when the queue changed.
  */
-import type { Maxl, QueueEvent, Segment } from '../../core/index.ts';
+import type { Maxl, QueueViewEvent, SegmentView } from '../../core/index.ts';
 import { GrowableFloats } from './growableFloats.ts';
 import { QUEUE_PLANNED, QUEUE_UNPLANNED } from './protocol.ts';
 
@@ -16,7 +16,7 @@ import { QUEUE_PLANNED, QUEUE_UNPLANNED } from './protocol.ts';
 const MAX_QUEUE_DRAWN = 4096;
 
 export interface LockedSegmentListener {
-  (seg: Segment): void;
+  (seg: SegmentView): void;
 }
 
 export class SnapshotBuilder {
@@ -28,7 +28,7 @@ export class SnapshotBuilder {
   private historical = 0;
   private queueDirty = true;
   /** Hears every segment that becomes historical (for job progress). */
-  onHistorical: ((seg: Segment) => void) | null = null;
+  onHistorical: ((seg: SegmentView) => void) | null = null;
 
   /** Follows a new author from scratch. */
   attach(maxl: Maxl | null): void {
@@ -43,7 +43,7 @@ export class SnapshotBuilder {
     if (maxl) this.unsubscribe = maxl.queue.subscribe((e) => this.onQueue(e));
   }
 
-  private onQueue(e: QueueEvent): void {
+  private onQueue(e: QueueViewEvent): void {
     switch (e.type) {
       case 'transmitted':
         for (const seg of e.segments) {

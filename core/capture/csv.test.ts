@@ -9,6 +9,7 @@ import { restingSample } from '../trajectory/tracks.ts';
 import { captureCsvColumns, captureToCsv } from './csv.ts';
 import { formatSafeCsv, safeCell } from './csvSafe.ts';
 import { SensorCapture } from './sensorCapture.ts';
+import { queueOf } from '../maxl.ts';
 
 const clock = new ClockMap(0, 0, 1);
 
@@ -100,7 +101,7 @@ describe('the plan horizon', () => {
   it('the history says where its plan begins once it dropped records, and the CSV leaves those cells empty', async () => {
     const { createMAXL } = await import('../index.ts');
     const maxl = createMAXL({ motionAxes: ['x'], limits: { maxVelocity: 100, maxAcceleration: 1000, junctionDeviation: 0.05 } }, { historyLimit: 3 });
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     for (const x of [10, 0, 10, 0, 10]) q.append({ endPosition: [x] });
     const sent = [];
     for (let k = 0; k < 3; k++) sent.push(q.transmitNext(0)!);

@@ -5,7 +5,7 @@ import { describe, expect, it } from 'vitest';
 import { analyseCapture, resampleOnGrid } from './analysis.ts';
 import { crossCorrelationLag, rmsDifference } from './lag.ts';
 import { amplitudeSpectrum, fft, smoothSpectrum, spectrumPeak } from './spectrum.ts';
-import { seededRandom, gaussian } from '../sim/random.ts';
+import { seededRandom, gaussian } from '../random.ts';
 
 describe('fft', () => {
   it('equals the plain DFT sum', () => {

@@ -11,20 +11,9 @@
  * the path is the smallest of these: see projectLimit().
  */
 import { configError } from '../errors.ts';
-import type { LimitsConfig } from './types.ts';
+import type { LimitsConfig, ResolvedLimits } from './types.ts';
 
-export interface ResolvedLimits {
-  /** mm/s bound on |v|; Infinity when only per-axis limits were given. */
-  maxSpeed: number;
-  /** mm/s² bound on |a|; Infinity when only per-axis limits were given. */
-  maxAccel: number;
-  /** mm/s per axis; Infinity where unbounded. */
-  axisMaxSpeed: number[];
-  /** mm/s² per axis; Infinity where unbounded. */
-  axisMaxAccel: number[];
-  /** mm */
-  junctionDeviation: number;
-}
+export type { ResolvedLimits };
 
 export const DEFAULT_JUNCTION_DEVIATION_MM = 0.05;
 

@@ -2,9 +2,9 @@
  * The shapes of a MAXL machine configuration, as an app writes it
  * (MaxlConfig), and as the core uses it once validated (ResolvedConfig).
  * Units: mm, s, mm/s, mm/s².
+ *
+ * Shapes only: this file imports nothing, so every part of the core can use them.
  */
-import type { ResolvedLimits } from './limits.ts';
-import type { ResolvedTransform } from '../trajectory/transforms.ts';
 
 export interface LimitsConfig {
   /** mm/s. A number bounds the magnitude of the velocity vector; an array bounds each motion axis. */
@@ -50,6 +50,19 @@ export interface FunctionTransform {
 
 export type TransformConfig = CoreXYTransform | LinearTransform | FunctionTransform;
 
+/** A transform checked and ready to evaluate (config/transforms.ts). */
+export interface ResolvedTransform {
+  type: TransformConfig['type'];
+  /** Indices of the input motion axes. */
+  inputs: number[];
+  /** Names of the output actuator axes. */
+  outputs: string[];
+  linear: boolean;
+  /** Output units (mm for a motor on a belt). */
+  tolerance: number;
+  evaluate(input: readonly number[]): number[];
+}
+
 export interface SubscriptionConfig {
   /** The device's name, as its hello reports it. */
   device: string;
@@ -78,6 +91,20 @@ export interface TrackInfo {
   kind: TrackKind;
   /** For position tracks: whether the track is a motion axis or a transform's output. */
   space?: 'motion' | 'actuator';
+}
+
+/** Limits checked and filled in (config/limits.ts). */
+export interface ResolvedLimits {
+  /** mm/s bound on |v|; Infinity when only per-axis limits were given. */
+  maxSpeed: number;
+  /** mm/s² bound on |a|; Infinity when only per-axis limits were given. */
+  maxAccel: number;
+  /** mm/s per axis; Infinity where unbounded. */
+  axisMaxSpeed: number[];
+  /** mm/s² per axis; Infinity where unbounded. */
+  axisMaxAccel: number[];
+  /** mm */
+  junctionDeviation: number;
 }
 
 export interface ResolvedConfig {

@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { createMAXL, MaxlError, type MaxlConfig, type SubscriptionConfig } from '../index.ts';
+import { queueOf } from '../maxl.ts';
 
 const good: MaxlConfig = {
   motionAxes: ['x', 'y'],
@@ -86,9 +87,9 @@ describe('config validation', () => {
     expect(maxl.config.limits.axisMaxSpeed).toEqual([50, 200]);
     expect(maxl.config.limits.maxAccel).toBe(Infinity);
     expect(maxl.config.limits.axisMaxAccel).toEqual([1000, 1000]);
-    maxl.queue.append({ endPosition: [100, 0] }); // along x: capped at 50 by the axis limit
-    maxl.queue.append({ endPosition: [100, 100] }); // along y: capped at 100 by the magnitude
-    const [sx, sy] = maxl.queue.segments();
+    queueOf(maxl).append({ endPosition: [100, 0] }); // along x: capped at 50 by the axis limit
+    queueOf(maxl).append({ endPosition: [100, 100] }); // along y: capped at 100 by the magnitude
+    const [sx, sy] = queueOf(maxl).segments();
     expect(Math.sqrt(sx.cruise2)).toBe(50);
     expect(Math.sqrt(sy.cruise2)).toBe(100);
   });

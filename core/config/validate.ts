@@ -6,8 +6,10 @@
 import { configError } from '../errors.ts';
 import { resolveLimits } from './limits.ts';
 import type { MaxlConfig, ResolvedConfig, SubscriptionConfig, TrackInfo } from './types.ts';
-import { resolveTransforms } from '../trajectory/transforms.ts';
-import { DEFAULT_QUEUE_CAPACITY } from '../trajectory/queue.ts';
+import { resolveTransforms } from './transforms.ts';
+
+/** Segments not yet transmitted that the queue holds before addSegmentToQueue waits, unless the config says otherwise. */
+export const DEFAULT_QUEUE_CAPACITY = 512;
 
 /** Track names readers may subscribe to besides axes and channels. */
 export const PATH_TRACKS = ['velocity', 'acceleration'] as const;

@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { ClockSync } from './clockSync.ts';
 import { U32 } from './clockMap.ts';
-import { seededRandom } from '../sim/random.ts';
+import { seededRandom } from '../random.ts';
 
 /**
  * A synthetic link and device clock, independent of the simulator: the device

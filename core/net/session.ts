@@ -10,13 +10,15 @@
  *    means the device rebooted (and forgot its queue).
  */
 import { MaxlError } from '../errors.ts';
-import { seededRandom } from '../sim/random.ts';
+import { seededRandom } from '../random.ts';
 import type { Scheduler, Timer } from '../time/scheduler.ts';
+import type { ClockMap } from './clockMap.ts';
 import { ClockSync } from './clockSync.ts';
 import { encodeFrame, FrameReceiver, type RawPacket } from './frame.ts';
 import type { Link } from './link.ts';
+import type { SendResult, StreamDevice } from './streamDevice.ts';
 import { decodePayload, type Message, type MessageOf, WireError } from './messages.ts';
-import { MessageType, NackReason, nameOf, NO_SESSION_DETAIL, PROTOCOL_VERSION, ReaderKind, type NackReasonName, type ReaderKindName } from './protocol.ts';
+import { MessageType, NackReason, nameOf, NO_SESSION_DETAIL, PROTOCOL_VERSION, ReaderKind, type ReaderKindName } from './protocol.ts';
 
 export interface ReaderInfo {
   index: number;
@@ -36,8 +38,7 @@ export interface DeviceInfo {
   readers: ReaderInfo[];
 }
 
-/** How a sent frame ended: acknowledged, or refused with a reason (the device consumed it). */
-export type SendResult = { ok: true } | { ok: false; reason: NackReasonName; detail: number };
+export type { SendResult };
 
 export interface SessionOptions {
   /** ms-scale timings, in µs */
@@ -92,13 +93,14 @@ interface Outgoing {
   resolve(result: SendResult): void;
 }
 
-export class DeviceSession {
+export class DeviceSession implements StreamDevice {
   readonly link: Link;
   readonly clock = new ClockSync();
   info: DeviceInfo | null = null;
   /** Free queue space the device last reported. */
   freeSegments = 0;
-  freeEvents = 0;
+  /** Free event entries the device last reported, less those taken since (takeEventRoom). */
+  private freeEvents = 0;
   lastStatus: MessageOf<'STATUS'> | null = null;
   /** Frames resent so far (diagnostics). */
   resends = 0;
@@ -196,6 +198,26 @@ export class DeviceSession {
       this.waiting.push(out);
       this.fillWindow();
     });
+  }
+
+  // --- what the streamer sees (StreamDevice) ---
+
+  get isOpen(): boolean {
+    return this.state === 'open';
+  }
+
+  get rttHigh_us(): number {
+    return this.clock.rttHigh || 0;
+  }
+
+  get clockMap(): ClockMap | null {
+    return this.clock.clock;
+  }
+
+  takeEventRoom(count: number): boolean {
+    if (count > this.freeEvents) return false;
+    this.freeEvents -= count;
+    return true;
   }
 
   /** How long the oldest unacknowledged frame has waited for its ack since first sent (µs), 0 if none. */

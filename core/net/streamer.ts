@@ -33,7 +33,7 @@ import type { Scheduler, Timer } from '../time/scheduler.ts';
 import type { TrajectoryQueue, QueueEvent } from '../trajectory/queue.ts';
 import type { Segment } from '../trajectory/segment.ts';
 import { evaluateTiming } from '../plan/phases.ts';
-import type { DeviceSession, SendResult } from './session.ts';
+import type { SendResult, StreamDevice } from './streamDevice.ts';
 import type { Message, MessageOf } from './messages.ts';
 import { geometryMessages, type PositionSlot } from './segmentEncoding.ts';
 import { timingForPath } from './timedPath.ts';
@@ -42,7 +42,7 @@ import { MAX_PAYLOAD } from './protocol.ts';
 /** What one device reads of the trajectory, and how to reach it. */
 export interface DeviceBinding {
   name: string;
-  session: DeviceSession;
+  device: StreamDevice;
   /** position tracks, in slot order */
   positionSlots: PositionSlot[];
   /** event channel index → event slot */
@@ -140,21 +140,21 @@ export class Streamer {
   /** µs of motion kept ahead: 2·RTT (the slowest device's recent worst) plus a margin. */
   get lead_us(): number {
     let rtt = 0;
-    for (const d of this.devices) rtt = Math.max(rtt, d.binding.session.clock.rttHigh || 0);
+    for (const d of this.devices) rtt = Math.max(rtt, d.binding.device.rttHigh_us);
     return Math.max(this.options.minLead_us, 2 * rtt + this.options.leadMargin_us);
   }
 
   /** A frame unacknowledged for this long (µs) holds all timing back: a high round trip plus 1 ms. */
   get stallLimit_us(): number {
     let rtt = 0;
-    for (const d of this.devices) rtt = Math.max(rtt, d.binding.session.clock.rttHigh || 0);
+    for (const d of this.devices) rtt = Math.max(rtt, d.binding.device.rttHigh_us);
     return Math.max(3_000, rtt + 1_000);
   }
 
   /** µs from now to the start of a segment after rest: one RTT (the slowest device's worst) plus a margin. */
   get startLead_us(): number {
     let rtt = 0;
-    for (const d of this.devices) rtt = Math.max(rtt, d.binding.session.clock.rttHigh || 0);
+    for (const d of this.devices) rtt = Math.max(rtt, d.binding.device.rttHigh_us);
     return rtt + this.options.startMargin_us;
   }
 
@@ -286,7 +286,7 @@ export class Streamer {
     // (Frames already in flight when one cable goes can still reach the others: no
     // protocol can make separate links agree on those. The boards then stop apart by
     // at most the motion of this stall limit; docs/protocol.md §6.)
-    const stalled = this.devices.some((d) => d.binding.session.state !== 'open' || d.binding.session.oldestUnacked_us > this.stallLimit_us);
+    const stalled = this.devices.some((d) => !d.binding.device.isOpen || d.binding.device.oldestUnacked_us > this.stallLimit_us);
     for (;;) {
       if (stalled) break;
       const next = this.queue.timeFront();
@@ -433,8 +433,7 @@ export class Streamer {
       this.nextWireId = (this.nextWireId + 1) & 0xffff;
     }
     for (const d of this.devices) {
-      const session = d.binding.session;
-      if (session.state !== 'open') continue;
+      if (!d.binding.device.isOpen) continue;
       const messages: Message[] = [];
       if (fresh.length > 0) {
         messages.push(...geometryMessages(fresh, d.binding.positionSlots, firstId, d.needP0));
@@ -447,7 +446,7 @@ export class Streamer {
   }
 
   private timingFor(d: DeviceState, segs: Segment[]): Message[] {
-    const clock = d.binding.session.clock.clock;
+    const clock = d.binding.device.clockMap;
     if (!clock) return [];
     const { messages, deviceLengths } = timingForPath(d, segs, clock, (seg) => this.wireIds.get(seg) as number, this.stopDecel());
     segs.forEach((seg, k) => this.queueEvents(d, seg, deviceLengths[k]));
@@ -480,16 +479,13 @@ export class Streamer {
   }
 
   private flushEvents(d: DeviceState): void {
-    const session = d.binding.session;
-    while (d.pendingEvents.length > 0 && d.pendingEvents[0].count <= session.freeEvents) {
-      const m = d.pendingEvents.shift() as MessageOf<'EVENTS'>;
-      session.freeEvents -= m.count;
-      this.post(d, m);
+    while (d.pendingEvents.length > 0 && d.binding.device.takeEventRoom(d.pendingEvents[0].count)) {
+      this.post(d, d.pendingEvents.shift() as MessageOf<'EVENTS'>);
     }
   }
 
   private post(d: DeviceState, m: Message): void {
-    d.binding.session.send(m).then(
+    d.binding.device.send(m).then(
       (r: SendResult) => {
         if (!r.ok) this.onEvent({ type: 'refused', device: d.binding.name, reason: r.reason, detail: r.detail, message: m });
         if (d.pendingEvents.length > 0) this.flushEvents(d);
@@ -509,7 +505,7 @@ export class Streamer {
         for (const s of this.sent.slice(first)) this.wireIds.delete(s);
         this.sent.length = first;
         this.nextWireId = fromId;
-        for (const d of this.devices) if (d.binding.session.state === 'open') this.post(d, { type: 'REPLACE_TAIL', fromId });
+        for (const d of this.devices) if (d.binding.device.isOpen) this.post(d, { type: 'REPLACE_TAIL', fromId });
       }
     }
     if (e.type === 'added' || e.type === 'removed') this.schedulePump(0);

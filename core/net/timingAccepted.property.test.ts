@@ -16,6 +16,7 @@ import { existsSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
 import { createMAXL, type Move } from '../index.ts';
+import { queueOf } from '../maxl.ts';
 import { PUBLIC_FIRMWARE_DIR } from '../sim/device/nodeWasmLoader.ts';
 import { DirectReader } from '../sim/testing/directReader.ts';
 import type { Segment } from '../trajectory/segment.ts';
@@ -54,13 +55,13 @@ describe.skipIf(!built)(`TIMING the reader accepts${built ? '' : ' (skipped: Ste
         let y = 0;
         for (const m of moves) {
           const next: Move = 'dwell' in m ? { dwell_s: m.dwell } : { endPosition: [(x += m.dx), (y += m.dy)], maxVelocity: m.cap };
-          maxl.queue.append(next);
+          queueOf(maxl).append(next);
         }
-        maxl.queue.planToRest();
+        queueOf(maxl).planToRest();
         const segments: Segment[] = [];
         // After rest, the next segment may start a little later than the path ended (a new run, with its own start).
         let earliest = 100_000;
-        for (let s = maxl.queue.transmitNext(earliest); s; s = maxl.queue.transmitNext(earliest)) {
+        for (let s = queueOf(maxl).transmitNext(earliest); s; s = queueOf(maxl).transmitNext(earliest)) {
           segments.push(s);
           earliest = s.endTime_us + gaps[segments.length % gaps.length];
         }
@@ -92,11 +93,11 @@ describe.skipIf(!built)(`TIMING the reader accepts${built ? '' : ' (skipped: Ste
   it('a cruise that follows rest absorbs no clock correction; a dwell absorbs it without moving', () => {
     // A 10 mm move from rest to rest: accelerate, cruise, decelerate.
     const maxl = createMAXL({ motionAxes: ['x'], limits: { maxVelocity: 20, maxAcceleration: 200, junctionDeviation: 0.05 } });
-    maxl.queue.append({ endPosition: [10] });
-    maxl.queue.append({ dwell_s: 1 });
-    maxl.queue.planToRest();
-    const move = maxl.queue.transmitNext(0)!;
-    const dwell = maxl.queue.transmitNext(0)!;
+    queueOf(maxl).append({ endPosition: [10] });
+    queueOf(maxl).append({ dwell_s: 1 });
+    queueOf(maxl).planToRest();
+    const move = queueOf(maxl).transmitNext(0)!;
+    const dwell = queueOf(maxl).transmitNext(0)!;
     const clock = new ClockMap(0, 0, 1);
     const late = new ClockMap(0, 100, 1); // the model has moved 100 µs since the chain began
     const plain = timingEntry(move, clock, 0);

@@ -19,4 +19,4 @@ export type { PlantConfig } from './plant/plantConfig.ts';
 export type { ToolAxisState } from './plant/springAxis.ts';
 export type { PenStroke, PenTransition } from './plant/penServo.ts';
 export { SimError, type SimErrorCode } from './errors.ts';
-export { seededRandom, gaussian, deriveSeed } from './random.ts';
+export { seededRandom, gaussian, deriveSeed } from '../random.ts';

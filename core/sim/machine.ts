@@ -26,7 +26,7 @@ import type { LinkDirectionConfig, LinkOverrides } from './link/linkConfig.ts';
 import { SimulatedLink, type LinkReport } from './link/simulatedLink.ts';
 import { Plant } from './plant/plant.ts';
 import type { MachinePreset } from './presets/presetTypes.ts';
-import { deriveSeed } from './random.ts';
+import { deriveSeed } from '../random.ts';
 
 export interface SimulatedMachineOptions {
   /** Seed of every random thing (link jitter and faults, sensor noise). Default 1. */

@@ -6,8 +6,9 @@
  */
 import { expect, it } from 'vitest';
 import { blotPlotter } from '../sim/presets/index.ts';
-import type { Segment } from '../index.ts';
+import type { Segment } from '../trajectory/segment.ts';
 import { runAndCheckPositions, startMachine } from './harness.ts';
+import { queueOf } from '../maxl.ts';
 
 const MOVES = [[20, 5], [40, 30], [10, 40], [35, 12], [5, 5]].map((p) => ({ endPosition: p, eventChannels: { pen: 1 } }));
 
@@ -17,7 +18,7 @@ async function run(corruption: number) {
     sim: { links: { blot: { toDevice: { corruptionProbability: corruption }, toAuthor: { corruptionProbability: corruption } } } },
   });
   const sent: Segment[] = [];
-  b.maxl.queue.subscribe((e) => {
+  queueOf(b.maxl).subscribe((e) => {
     if (e.type === 'transmitted') sent.push(...e.segments);
   });
   const check = await runAndCheckPositions(b, MOVES);

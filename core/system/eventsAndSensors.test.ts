@@ -7,6 +7,7 @@
 import { describe, expect, it } from 'vitest';
 import { accelRig, lightPainter } from '../sim/presets/index.ts';
 import { runJob, startMachine } from './harness.ts';
+import { queueOf } from '../maxl.ts';
 
 describe('event channels', () => {
   it('LED changes fire within one evaluation tick of the plan', async () => {
@@ -17,11 +18,11 @@ describe('event channels', () => {
     // Each segment's changes, once (a segment may be reported transmitted again when
     // its timing is resent), then only real changes: the strip shows each change once.
     const bySegment = new Map<number, Array<{ t: number; value: number }>>();
-    b.maxl.queue.subscribe((e) => {
+    queueOf(b.maxl).subscribe((e) => {
       if (e.type !== 'transmitted') return;
       for (const seg of e.segments) {
         const changes: Array<{ t: number; value: number }> = [];
-        for (const track of b.maxl.queue.eventTracksOf(seg)) track.times.forEach((t, k) => changes.push({ t: seg.startTime_us + t * 1e6, value: track.values[k] }));
+        for (const track of queueOf(b.maxl).eventTracksOf(seg)) track.times.forEach((t, k) => changes.push({ t: seg.startTime_us + t * 1e6, value: track.values[k] }));
         bySegment.set(seg.id, changes);
       }
     });

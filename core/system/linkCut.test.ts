@@ -4,7 +4,7 @@
  */
 import { afterAll, describe, expect, it } from 'vitest';
 import { blotPlotter, lightPainter } from '../sim/presets/index.ts';
-import { seededRandom } from '../sim/random.ts';
+import { seededRandom } from '../random.ts';
 import { distanceToPolyline } from './geometry.ts';
 import { startMachine, type Bench } from './harness.ts';
 

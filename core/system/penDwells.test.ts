@@ -18,6 +18,7 @@ import { blotPlotter } from '../sim/presets/index.ts';
 import type { Move } from '../index.ts';
 import type { Segment } from '../trajectory/segment.ts';
 import { runJob, startMachine, type Bench } from './harness.ts';
+import { queueOf } from '../maxl.ts';
 
 const DROP_S = 0.12; // the preset's servo: dropDelay_us 120 000
 const LIFT_S = 0.09; // liftDelay_us 90 000
@@ -71,7 +72,7 @@ function toStrokes(p: [number, number]): number {
 /** Records every transmitted segment (locked: its times are final). */
 function recordTransmitted(b: Bench): Segment[] {
   const out: Segment[] = [];
-  b.maxl.queue.subscribe((e) => {
+  queueOf(b.maxl).subscribe((e) => {
     if (e.type === 'transmitted') out.push(...e.segments);
   });
   return out;

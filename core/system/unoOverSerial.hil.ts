@@ -10,7 +10,7 @@
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { createMAXL, type Maxl } from '../index.ts';
 import type { Link } from '../net/link.ts';
-import type { RuntimeEvent } from '../net/runtime.ts';
+import type { RuntimeEvent } from '../runtime.ts';
 import { FrameReceiver } from '../net/frame.ts';
 import { MessageType, NackReason } from '../net/protocol.ts';
 import type { DeviceInfo } from '../net/session.ts';

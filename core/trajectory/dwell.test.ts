@@ -4,6 +4,7 @@
  */
 import { describe, expect, it } from 'vitest';
 import { createMAXL, MAX_DWELL_S, MaxlError, planPath, type EvaluatorState, type MaxlConfig, type Move } from '../index.ts';
+import { queueOf } from '../maxl.ts';
 
 const config = (extra: Partial<MaxlConfig> = {}): MaxlConfig => ({
   motionAxes: ['x', 'y'],
@@ -29,7 +30,7 @@ function expectRefused(fn: () => unknown, field: string, message?: RegExp): Maxl
 
 describe('dwell validation', () => {
   it('refuses a dwell that also gives an end position or a speed, naming the field, and changes nothing', () => {
-    const q = createMAXL(config()).queue;
+    const q = queueOf(createMAXL(config()));
     q.append({ endPosition: [10, 0] });
     const before = q.size;
     expectRefused(() => q.append({ dwell_s: 1, endPosition: [5, 5] } as Move), 'endPosition', /no endPosition/);
@@ -39,7 +40,7 @@ describe('dwell validation', () => {
   });
 
   it('refuses a duration that is negative, not finite, not a number, or longer than the wire times', () => {
-    const q = createMAXL(config()).queue;
+    const q = queueOf(createMAXL(config()));
     for (const bad of [-0.001, NaN, Infinity, '1' as unknown as number, undefined as unknown as number]) {
       expectRefused(() => q.append({ dwell_s: bad }), 'dwell_s');
     }
@@ -49,7 +50,7 @@ describe('dwell validation', () => {
   });
 
   it('resolves its events like a linear move’s, and refuses an unknown channel', () => {
-    const q = createMAXL(config()).queue;
+    const q = queueOf(createMAXL(config()));
     expectRefused(() => q.append({ dwell_s: 0.1, eventChannels: { spindle: 1 } }), 'eventChannels.spindle', /not an event channel/);
     expectRefused(() => q.append({ dwell_s: 0.1, eventChannels: { pen: NaN } }), 'eventChannels.pen');
     expect(q.size).toBe(0);
@@ -64,7 +65,7 @@ describe('dwell validation', () => {
 
 describe('dwell planning', () => {
   it('plans to rest before a dwell and from rest after it, and lasts exactly dwell_s at rest', () => {
-    const q = createMAXL(config()).queue;
+    const q = queueOf(createMAXL(config()));
     q.append({ endPosition: [50, 0] });
     const dwell = q.append({ dwell_s: 0.12, eventChannels: { pen: 1 } });
     // Straight on after the dwell: without it, the junction would be taken at full speed.
@@ -83,11 +84,11 @@ describe('dwell planning', () => {
     expect(b.maxEntry2).toBe(0);
     // The machine rests through the dwell, in the author's own record too.
     const maxl = createMAXL(config());
-    maxl.queue.append({ endPosition: [50, 0] });
-    maxl.queue.append({ dwell_s: 0.12 });
-    maxl.queue.append({ endPosition: [100, 0] });
-    maxl.queue.planToRest();
-    const [s1, s2] = [maxl.queue.transmitNext(0)!, maxl.queue.transmitNext(0)!];
+    queueOf(maxl).append({ endPosition: [50, 0] });
+    queueOf(maxl).append({ dwell_s: 0.12 });
+    queueOf(maxl).append({ endPosition: [100, 0] });
+    queueOf(maxl).planToRest();
+    const [s1, s2] = [queueOf(maxl).transmitNext(0)!, queueOf(maxl).transmitNext(0)!];
     expect(s2.startTime_us).toBe(s1.endTime_us);
     for (const f of [0, 0.3, 0.99]) {
       const sample = maxl.history.sample(s2.startTime_us + f * 0.12e6)!;
@@ -98,7 +99,7 @@ describe('dwell planning', () => {
   });
 
   it('holds wherever the path is when a move before it is cancelled or replaced', () => {
-    const q = createMAXL(config()).queue;
+    const q = queueOf(createMAXL(config()));
     q.append({ endPosition: [10, 0] });
     const second = q.append({ endPosition: [10, 30] });
     q.append({ dwell_s: 0.5 });
@@ -117,7 +118,7 @@ describe('dwell planning', () => {
   });
 
   it('shows an evaluator distance 0, speed 0 and a zero direction, over the dwell’s time', () => {
-    const q = createMAXL(config()).queue;
+    const q = queueOf(createMAXL(config()));
     const seen: EvaluatorState[] = [];
     q.append({ endPosition: [30, 40] });
     q.append({
@@ -143,7 +144,7 @@ describe('dwell planning', () => {
   });
 
   it('brings a pause to rest before a dwell, its events not yet set', () => {
-    const q = createMAXL(config()).queue;
+    const q = queueOf(createMAXL(config()));
     q.append({ endPosition: [1, 0] });
     q.append({ dwell_s: 0.2, eventChannels: { pen: 1 } });
     q.append({ endPosition: [100, 0] });
@@ -157,7 +158,7 @@ describe('dwell planning', () => {
 describe('event-only moves', () => {
   it('are a dwell of 0 s: their events happen, between the segments around them', () => {
     const maxl = createMAXL(config());
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     q.append({ endPosition: [20, 0] });
     const r = q.append({ endPosition: [20, 0], eventChannels: { pen: 1 } });
     expect(r.skipped).toBe(false);
@@ -179,7 +180,7 @@ describe('event-only moves', () => {
 
   it('a dwell of 0 s given as such is one too; a zero-length move with no events is still skipped', () => {
     const maxl = createMAXL(config());
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     expect(q.append({ dwell_s: 0, eventChannels: { laser: 0.5 } }).skipped).toBe(false);
     expect(q.append({ endPosition: [0, 0] }).skipped).toBe(true);
     expect(maxl.skippedZeroLength).toBe(1);

@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { createMAXL, MaxlError, type EvaluatorState } from '../index.ts';
+import { queueOf } from '../maxl.ts';
 
 const base = {
   motionAxes: ['x', 'y'],
@@ -11,7 +12,7 @@ const base = {
 describe('event channels', () => {
   it('holds a fixed value for the segment, and keeps the last value where a move sets none', () => {
     const maxl = createMAXL(base);
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     q.append({ endPosition: [10, 0], eventChannels: { powerOut: 0.8 } });
     q.append({ endPosition: [20, 0] });
     q.append({ endPosition: [30, 0], eventChannels: { powerOut: 0 } });
@@ -29,7 +30,7 @@ describe('event channels', () => {
 
   it('samples an evaluator every evaluationPrecision ms and keeps only the changes', () => {
     const maxl = createMAXL(base);
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     const calls: EvaluatorState[] = [];
     // Light painting: a bit per 5 mm stripe of x.
     q.append({
@@ -68,7 +69,7 @@ describe('event channels', () => {
 
   it('gives evaluators the full state: positions by name, velocity, acceleration, distance, unit', () => {
     const maxl = createMAXL(base);
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     const states: EvaluatorState[] = [];
     q.append({
       endPosition: [30, 40],
@@ -96,7 +97,7 @@ describe('event channels', () => {
 
   it('refuses unknown channels and bad values at once, and surfaces a failing evaluator before locking', () => {
     const maxl = createMAXL(base);
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     expect(() => q.append({ endPosition: [1, 0], eventChannels: { laser: 1 } })).toThrow(/not an event channel/);
     expect(() => q.append({ endPosition: [1, 0], eventChannels: { powerOut: NaN } })).toThrow(MaxlError);
     expect(() =>

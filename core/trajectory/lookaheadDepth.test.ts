@@ -5,8 +5,12 @@
  * store growing and wrapping, and through edits of the deep unsent tail.
  */
 import { describe, expect, it } from 'vitest';
-import { createMAXL, DryRun, planPath, type MaxlConfig, type Segment } from '../index.ts';
-import { DEFAULT_QUEUE_CAPACITY, MAX_LOOKAHEAD_SEGMENTS } from './queue.ts';
+import { createMAXL, planPath, type MaxlConfig } from '../index.ts';
+import { DEFAULT_QUEUE_CAPACITY } from '../config/validate.ts';
+import { queueOf } from '../maxl.ts';
+import { DryRun } from './dryRun.ts';
+import { MAX_LOOKAHEAD_SEGMENTS } from './queue.ts';
+import type { Segment } from './segment.ts';
 
 const LIMITS = { maxVelocity: 250, maxAcceleration: 3000, junctionDeviation: 0.05 };
 const config: MaxlConfig = { motionAxes: ['x', 'y'], limits: LIMITS };
@@ -25,11 +29,11 @@ async function runIncrementally(start: number[], points: number[][], onAdded?: (
   const maxl = createMAXL(config, { initialPosition: start });
   const taken: Segment[] = [];
   let deepest = 0;
-  const dry = new DryRun(maxl.queue, (seg) => taken.push(seg));
+  const dry = new DryRun(queueOf(maxl), (seg) => taken.push(seg));
   for (let k = 0; k < points.length; k++) {
     await maxl.addSegmentToQueue({ endPosition: points[k] });
     onAdded?.(k, maxl);
-    deepest = Math.max(deepest, maxl.queue.untransmittedCount);
+    deepest = Math.max(deepest, queueOf(maxl).untransmittedCount);
     dry.takeWhileFull();
   }
   dry.finish();
@@ -73,7 +77,7 @@ describe('lookahead as deep as braking needs', () => {
     let replaced = 0;
     const { taken } = await runIncrementally(start, points, (k, maxl) => {
       if (k !== 3999) return;
-      const q = maxl.queue;
+      const q = queueOf(maxl);
       expect(q.untransmittedCount).toBeGreaterThan(1500);
       const seg = q.untransmittedAt(q.untransmittedCount - 1500)!;
       q.replace(seg.moveId, { endPosition: [...seg.end] });
@@ -88,7 +92,7 @@ describe('lookahead as deep as braking needs', () => {
 
   it('lets waiting producers in one after another while the front needs more path, with no transmit between', async () => {
     const maxl = createMAXL({ ...config, queueCapacity: 1 });
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     await maxl.addSegmentToQueue({ endPosition: [100, 0] });
     // The front, from rest, is the only segment: it needs more path, so this one comes in too.
     await maxl.addSegmentToQueue({ endPosition: [200, 0] });
@@ -109,7 +113,7 @@ describe('lookahead as deep as braking needs', () => {
 
   it(`bounds the lookahead at ${MAX_LOOKAHEAD_SEGMENTS} segments on an absurdly fine path`, () => {
     const maxl = createMAXL(config);
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     // A 100 mm line the machine may leave at full speed, then 1e-7 mm segments straight on:
     // braking from there needs 1e8 of them, so the line's exit is never final.
     q.append({ endPosition: [100, 0] });

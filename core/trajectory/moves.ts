@@ -15,9 +15,10 @@ import { MaxlError } from '../errors.ts';
 import { LIMIT_RANGE, projectLimit, type ResolvedLimits } from '../config/limits.ts';
 import type { ResolvedConfig } from '../config/types.ts';
 import { junctionSpeed2 } from '../plan/junction.ts';
-import { resolveMoveEvents, type MoveEvents, type ResolvedEventSpec } from './events.ts';
+import { resolveMoveEvents, type MoveEvents } from './events.ts';
 import { Segment } from './segment.ts';
-import { actuatorPosition, subdivisionFractions } from './transforms.ts';
+import { ValidatedMove } from './validatedMove.ts';
+import { actuatorPosition, subdivisionFractions } from '../config/transforms.ts';
 
 export interface LinearMove {
   /** mm: one value per motion axis, or an object naming only the axes that move. */
@@ -40,6 +41,8 @@ export interface DwellMove {
 
 export type Move = LinearMove | DwellMove;
 
+export { ValidatedMove };
+
 export function isDwell(move: Move): move is DwellMove {
   return move !== null && typeof move === 'object' && 'dwell_s' in move;
 }
@@ -51,45 +54,6 @@ export function isDwell(move: Move): move is DwellMove {
  * its corrections. A longer wait is several dwells.
  */
 export const MAX_DWELL_S = 2000;
-
-/**
- * A move that passed validation, not yet turned into segments. Its segments keep it
- * (as their `source`) for as long as they are queued.
- *
- * A class rather than an object literal, like every object that lives with a queued
- * segment: V8 may "pretenure" an object literal whose objects all survive a young
- * collection (as they do while the queue fills), and then creates them in the old
- * generation, where each keeps the young objects it points at alive until the next
- * full collection. Class instances carry no such allocation site.
- */
-export class ValidatedMove {
-  /** Where the move ends; for a dwell, where it was validated to start (a dwell holds wherever the path is). */
-  readonly end: number[];
-  readonly maxVelocity: number;
-  readonly events: ResolvedEventSpec[];
-  /** s, for a dwell; null for a linear move. */
-  readonly dwell_s: number | null;
-  /** mm/s², a cap on this move's acceleration (as Klipper's M204); Infinity for the machine's limits. */
-  readonly maxAcceleration: number;
-  /** The actuators at `end`, computed once by validation (null for a dwell). */
-  readonly actuatorEnd: number[] | null;
-
-  constructor(
-    end: number[],
-    maxVelocity: number,
-    events: ResolvedEventSpec[],
-    dwell_s: number | null = null,
-    maxAcceleration = Infinity,
-    actuatorEnd: number[] | null = null,
-  ) {
-    this.end = end;
-    this.maxVelocity = maxVelocity;
-    this.events = events;
-    this.dwell_s = dwell_s;
-    this.maxAcceleration = maxAcceleration;
-    this.actuatorEnd = actuatorEnd;
-  }
-}
 
 /** The fractions of a move that is not subdivided. */
 const WHOLE = [0, 1];
@@ -139,7 +103,7 @@ export const MIN_SPEED = LIMIT_RANGE.speed[0];
 export const MIN_ACCELERATION = LIMIT_RANGE.accel[0];
 
 /**
- * With devices (the runtime sets it with the links' floor, net/runtime.ts), every
+ * With devices (the runtime sets it with the links' floor, core/runtime.ts), every
  * segment of length > 0 lasts at least this long (s), whatever the links allow:
  * TIMING carries whole µs, and a segment timed 0 µs for a length > 0 is one the
  * reader refuses (it cannot cover distance in no time). Boundaries round by at most

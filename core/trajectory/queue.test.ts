@@ -1,8 +1,10 @@
 import { describe, expect, it } from 'vitest';
 import fc from 'fast-check';
-import { createMAXL, MaxlError, phasesOf, type MaxlConfig, type QueueEvent } from '../index.ts';
+import { createMAXL, MaxlError, phasesOf, type MaxlConfig } from '../index.ts';
+import type { QueueEvent } from './queue.ts';
 import { refBlocks, refJunctionSpeeds2 } from '../testing/referencePlanner.ts';
 import { resolveLimits } from '../config/limits.ts';
+import { queueOf } from '../maxl.ts';
 
 const LIMITS = { maxVelocity: 250, maxAcceleration: 3000, junctionDeviation: 0.05 };
 const config = (extra: Partial<MaxlConfig> = {}): MaxlConfig => ({ motionAxes: ['x', 'y'], limits: LIMITS, ...extra });
@@ -30,7 +32,7 @@ function expectCode(fn: () => unknown, code: string, field?: string) {
 describe('queue states', () => {
   it('moves segments through unplanned → planned → transmitted → historical', () => {
     const maxl = createMAXL(config());
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     for (const p of square) q.append({ endPosition: p });
     // The first three corners are capped by junction speed (final); the last ends at rest and
     // could still speed up if more path came, so it stays unplanned.
@@ -51,7 +53,7 @@ describe('queue states', () => {
 
   it('starts a segment after rest no earlier than asked, and after the transmitted path', () => {
     const maxl = createMAXL(config());
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     q.append({ endPosition: [10, 0] });
     const a = q.transmitNext(0)!;
     expect(a.exit2).toBe(0); // the path ended at rest when it was locked
@@ -65,7 +67,7 @@ describe('queue states', () => {
 
   it('keeps an edit from touching transmitted segments, and says why', () => {
     const maxl = createMAXL(config());
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     const r1 = q.append({ endPosition: [10, 0] });
     const r2 = q.append({ endPosition: [10, 10] });
     q.transmitNext(0);
@@ -80,7 +82,7 @@ describe('queue states', () => {
 
   it('replans from an edit: later moves start where the path now goes', () => {
     const maxl = createMAXL(config());
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     const events: QueueEvent[] = [];
     q.subscribe((e) => events.push(e));
     const a = q.append({ endPosition: [10, 0] });
@@ -103,7 +105,7 @@ describe('queue states', () => {
 
   it('refuses an edit that leaves the moving machine no room to brake, and keeps the queue as it was', () => {
     const maxl = createMAXL(config());
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     q.append({ endPosition: [100, 0] });
     const b = q.append({ endPosition: [200, 0] });
     q.transmitNext(0); // locked, leaving the first move at speed into the second
@@ -120,7 +122,7 @@ describe('queue states', () => {
 
   it('reports every transition to observers, in order', () => {
     const maxl = createMAXL(config());
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     const seen: string[] = [];
     q.subscribe((e) => seen.push(`${e.type}:${e.segments.map((s) => s.id).join(',')}`));
     q.append({ endPosition: [10, 0] });
@@ -150,7 +152,7 @@ describe('bounded queue', () => {
     expect(maxl.queue.untransmittedCount).toBe(3);
     const transmitted: number[] = [];
     while (transmitted.length < 10) {
-      const seg = maxl.queue.transmitNext(0);
+      const seg = queueOf(maxl).transmitNext(0);
       if (seg) transmitted.push(seg.id);
       await new Promise((r) => setImmediate(r));
       expect(maxl.queue.untransmittedCount).toBeLessThanOrEqual(3);
@@ -158,7 +160,7 @@ describe('bounded queue', () => {
     await loop;
     expect(added).toBe(10);
     expect(transmitted).toEqual([1, 2, 3, 4, 5, 6, 7, 8, 9, 10]);
-    expect(maxl.queue.segments().map((s) => s.end)).toEqual(path);
+    expect(queueOf(maxl).segments().map((s) => s.end)).toEqual(path);
   });
 
   it('keeps the order of calls that are not awaited, and validates each at once', async () => {
@@ -168,11 +170,11 @@ describe('bounded queue', () => {
     const c = maxl.addSegmentToQueue({ endPosition: { y: 20 } }); // x stays at 10
     await expect(maxl.addSegmentToQueue({ endPosition: [NaN, 0] })).rejects.toMatchObject({ code: 'MOVE_INVALID' });
     await a;
-    maxl.queue.transmitNext(0);
+    queueOf(maxl).transmitNext(0);
     await b;
-    maxl.queue.transmitNext(0);
+    queueOf(maxl).transmitNext(0);
     await c;
-    expect(maxl.queue.segments().map((s) => s.end)).toEqual([
+    expect(queueOf(maxl).segments().map((s) => s.end)).toEqual([
       [10, 0],
       [10, 10],
       [10, 20],
@@ -183,7 +185,7 @@ describe('bounded queue', () => {
 describe('bad input', () => {
   it('rejects NaN, infinities and wrong dimensions with typed errors, enqueuing nothing', () => {
     const maxl = createMAXL(config());
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     q.append({ endPosition: [1, 1] });
     const before = q.size;
     expectCode(() => q.append({ endPosition: [NaN, 0] }), 'MOVE_INVALID', 'endPosition[0]');
@@ -201,7 +203,7 @@ describe('bad input', () => {
   });
 
   it("a move's maxAcceleration caps its acceleration below the machine's, and only its own", () => {
-    const q = createMAXL(config()).queue;
+    const q = queueOf(createMAXL(config()));
     q.append({ endPosition: [10, 0], maxAcceleration: 500 });
     q.append({ endPosition: [0, 0] });
     const segments = [q.transmitNext(0)!, q.transmitNext(0)!];
@@ -224,9 +226,9 @@ describe('bad input', () => {
 
   it('refuses moves outside the soft limits', () => {
     const maxl = createMAXL(config({ softLimits: { x: [0, 300], y: [0, 200] } }));
-    expectCode(() => maxl.queue.append({ endPosition: [301, 0] }), 'SOFT_LIMIT', 'endPosition.x');
-    expectCode(() => maxl.queue.append({ endPosition: [0, -0.001] }), 'SOFT_LIMIT', 'endPosition.y');
-    maxl.queue.append({ endPosition: [300, 200] });
+    expectCode(() => queueOf(maxl).append({ endPosition: [301, 0] }), 'SOFT_LIMIT', 'endPosition.x');
+    expectCode(() => queueOf(maxl).append({ endPosition: [0, -0.001] }), 'SOFT_LIMIT', 'endPosition.y');
+    queueOf(maxl).append({ endPosition: [300, 200] });
     expect(maxl.queue.size).toBe(1);
   });
 
@@ -237,7 +239,7 @@ describe('bad input', () => {
       limits: LIMITS,
       transforms: [{ type: 'function', from: ['x', 'y'], to: ['r', 'theta'], fn: ([x, y]) => [Math.hypot(x, y), Math.atan2(y, x)] }],
     });
-    expectCode(() => maxl.queue.append({ endPosition: [50, 50], eventChannels: { nope: 1 } }), 'MOVE_INVALID', 'eventChannels.nope');
+    expectCode(() => queueOf(maxl).append({ endPosition: [50, 50], eventChannels: { nope: 1 } }), 'MOVE_INVALID', 'eventChannels.nope');
     expect(maxl.queue.size).toBe(0);
   });
 });
@@ -275,7 +277,7 @@ describe('incremental planning', () => {
     fc.assert(
       fc.property(pathArb, (points) => {
         const maxl = createMAXL(config());
-        const q = maxl.queue;
+        const q = queueOf(maxl);
         const finalAt = new Map<number, [number, number]>();
         q.subscribe((e) => {
           if (e.type === 'planned') for (const s of e.segments) finalAt.set(s.id, [s.entry2, s.exit2]);
@@ -302,7 +304,7 @@ describe('incremental planning', () => {
     fc.assert(
       fc.property(pathArb, fc.integer({ min: 1, max: 6 }), (points, lookahead) => {
         const maxl = createMAXL(config());
-        const q = maxl.queue;
+        const q = queueOf(maxl);
         const locked = [];
         for (const p of points) {
           q.append({ endPosition: p });
@@ -338,18 +340,18 @@ describe('splitting and braking', () => {
     const a = createMAXL(config());
     const b = createMAXL(config());
     for (const m of [a, b]) {
-      m.queue.append({ endPosition: [100, 0] });
-      m.queue.append({ endPosition: [100, 50] });
+      queueOf(m).append({ endPosition: [100, 0] });
+      queueOf(m).append({ endPosition: [100, 50] });
     }
-    const [p1, p2] = b.queue.splitFront(30);
+    const [p1, p2] = queueOf(b).splitFront(30);
     expect(p1.length).toBeCloseTo(30, 12);
     expect(p2.length).toBeCloseTo(70, 12);
     expect(p2.start).toEqual([30, 0]);
     expect(p1.moveId).toBe(p2.moveId);
-    for (const m of [a, b]) m.queue.planToRest();
+    for (const m of [a, b]) queueOf(m).planToRest();
     const locked = (m: typeof a) => {
       const out = [];
-      for (let s = m.queue.transmitNext(0); s; s = m.queue.transmitNext(0)) out.push(s);
+      for (let s = queueOf(m).transmitNext(0); s; s = queueOf(m).transmitNext(0)) out.push(s);
       return out;
     };
     const whole = locked(a);
@@ -366,7 +368,7 @@ describe('splitting and braking', () => {
 
   it('brakes to rest as soon as the limits allow, on the path, and holds the rest back', () => {
     const maxl = createMAXL(config());
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     for (let k = 1; k <= 20; k++) q.append({ endPosition: [k * 10, 0] }); // 200 mm straight, in 10 mm pieces
     q.planToRest();
     const first = [q.transmitNext(0)!, q.transmitNext(0)!, q.transmitNext(0)!];
@@ -392,7 +394,7 @@ describe('splitting and braking', () => {
 
   it('cancels from a segment on', () => {
     const maxl = createMAXL(config());
-    const q = maxl.queue;
+    const q = queueOf(maxl);
     for (let k = 1; k <= 5; k++) q.append({ endPosition: [k * 10, 0] });
     const third = q.segments()[2];
     q.cancelFrom(third.id);

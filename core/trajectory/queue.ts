@@ -15,15 +15,16 @@
  * segments from the front with transmitNext() and retires them with retireUntil()
  * as time passes.
  */
-import { MaxlError } from '../errors.ts';
+import { abortedError, MaxlError } from '../errors.ts';
 import type { ResolvedConfig } from '../config/types.ts';
 import { LookaheadPlanner } from '../plan/lookahead.ts';
 import { shouldDropSpent } from '../plan/spentPrefix.ts';
 import { buildEventTracks, type EventTrack } from './events.ts';
 import { segmentsForMove, tailAfter, validateMove, ZERO_LENGTH_MM, type Move, type PathTail, type ValidatedMove } from './moves.ts';
+import type { QueueEventType, QueueView } from './queueView.ts';
 import { Segment, type SegmentState } from './segment.ts';
 
-export type QueueEventType = 'added' | 'planned' | 'replanned' | 'transmitted' | 'historical' | 'removed';
+export type { QueueEventType };
 
 export interface QueueEvent {
   type: QueueEventType;
@@ -40,8 +41,6 @@ export interface MoveReceipt {
   skipped: boolean;
 }
 
-export const DEFAULT_QUEUE_CAPACITY = 512;
-
 /**
  * The most untransmitted segments the queue takes for the lookahead's sake (beyond
  * its capacity). 65 536 segments hold the 10.4 mm that braking from 250 mm/s at
@@ -57,7 +56,8 @@ const NO_EVENTS: EventTrack[] = [];
 
 const LOCKED_MESSAGE = 'has already been transmitted; transmitted segments are locked';
 
-export class TrajectoryQueue {
+/** The queue, with its editing and executing methods: owned by Maxl and the streamer; apps read it through QueueView. */
+export class TrajectoryQueue implements QueueView {
   readonly config: ResolvedConfig;
   readonly capacity: number;
   /** Zero-length moves (setting no event) skipped so far. */
@@ -221,12 +221,32 @@ export class TrajectoryQueue {
    * Resolves when a slot is reserved for the caller, who must then call
    * appendValidated(move, true). Waiters are served in the order they came.
    */
-  reserveSlot(): Promise<void> {
+  reserveSlot(signal?: AbortSignal): Promise<void> {
+    if (signal?.aborted) return Promise.reject(abortedError(signal, 'the wait for room in the queue'));
     if (this.hasRoom() && this.roomWaiters.length === 0) {
       this.reserved++;
       return Promise.resolve();
     }
-    return new Promise((resolve) => this.roomWaiters.push(resolve));
+    if (!signal) return new Promise((resolve) => this.roomWaiters.push(resolve));
+    // An aborted waiter leaves the line at once, so it never takes a slot.
+    return new Promise((resolve, reject) => {
+      const waiter = () => {
+        signal.removeEventListener('abort', onAbort);
+        resolve();
+      };
+      const onAbort = () => {
+        this.roomWaiters = this.roomWaiters.filter((w) => w !== waiter);
+        reject(abortedError(signal, 'the wait for room in the queue'));
+      };
+      signal.addEventListener('abort', onAbort, { once: true });
+      this.roomWaiters.push(waiter);
+    });
+  }
+
+  /** Gives back a slot from reserveSlot() that will not be used (its move was abandoned). */
+  releaseSlot(): void {
+    this.reserved--;
+    this.wakeWaiters();
   }
 
   /**
@@ -281,6 +301,11 @@ export class TrajectoryQueue {
   replace(moveId: number, move: Move): MoveReceipt {
     const index = this.untransmittedIndexOf(moveId);
     return this.edit(index, this.validate(move, this.live[index].start), true) as MoveReceipt;
+  }
+
+  /** Cancels an untransmitted move (all its segments) and every move after it. */
+  cancelMovesFrom(moveId: number): void {
+    this.edit(this.untransmittedIndexOf(moveId), null, false);
   }
 
   /** Cancels every untransmitted segment. */

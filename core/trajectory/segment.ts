@@ -17,7 +17,7 @@
 import type { BlockLimits } from '../plan/lookahead.ts';
 import { dwellTiming, timingDuration, trapezoidTiming, type Timing } from '../plan/phases.ts';
 import type { EventTrack, ResolvedEventSpec } from './events.ts';
-import type { ValidatedMove } from './moves.ts';
+import type { ValidatedMove } from './validatedMove.ts';
 
 const NO_ACTUATORS: number[] = [];
 

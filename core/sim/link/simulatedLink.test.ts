@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { VirtualScheduler } from '../../time/virtualScheduler.ts';
-import { seededRandom } from '../random.ts';
+import { seededRandom } from '../../random.ts';
 import type { LinkOverrides } from './linkConfig.ts';
 import { SimulatedLink } from './simulatedLink.ts';
 

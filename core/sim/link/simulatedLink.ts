@@ -12,7 +12,7 @@
 import type { Link } from '../../net/link.ts';
 import type { Scheduler } from '../../time/scheduler.ts';
 import { SimError } from '../errors.ts';
-import { deriveSeed, seededRandom } from '../random.ts';
+import { deriveSeed, seededRandom } from '../../random.ts';
 import { resolveLinkConfig, type LinkConfig, type LinkDirectionConfig, type LinkOverrides } from './linkConfig.ts';
 import type { LinkDirectionCounters } from './linkCounters.ts';
 import { LinkDirection } from './linkDirection.ts';

@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { Plant } from './plant.ts';
 import { Bno055, Bno055Register as R, BNO055_ADDRESS } from './bno055.ts';
-import { seededRandom } from '../random.ts';
+import { seededRandom } from '../../random.ts';
 import type { PlantConfig } from './plantConfig.ts';
 
 const G = 9.80665;

@@ -33,7 +33,7 @@
  * Not modelled: the power-on and mode-switch delays (the chip answers at once),
  * calibration, interrupts, temperature.
  */
-import { gaussian } from '../random.ts';
+import { gaussian } from '../../random.ts';
 
 export const BNO055_ADDRESS = 0x28;
 export const BNO055_CHIP_ID = 0xa0;

@@ -15,7 +15,7 @@
  * recent time, the exposure image, pen strokes, accelerometer samples.
  */
 import type { DeviceHardware } from '../device/deviceHardware.ts';
-import { deriveSeed, seededRandom } from '../random.ts';
+import { deriveSeed, seededRandom } from '../../random.ts';
 import { Bno055 } from './bno055.ts';
 import { carriagePositions, cartesianAxes } from './kinematics.ts';
 import { LedExposure } from './ledExposure.ts';

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { seededRandom } from '../random.ts';
+import { seededRandom } from '../../random.ts';
 import { SpringAxis } from './springAxis.ts';
 import type { SpringParameters } from './springResponse.ts';
 

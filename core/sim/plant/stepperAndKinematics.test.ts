@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import { resolveTransforms, actuatorPosition } from '../../trajectory/transforms.ts';
-import { seededRandom } from '../random.ts';
+import { resolveTransforms, actuatorPosition } from '../../config/transforms.ts';
+import { seededRandom } from '../../random.ts';
 import { carriagePositions } from './kinematics.ts';
 import { Plant } from './plant.ts';
 import { StepperMotor } from './stepperMotor.ts';

@@ -13,6 +13,7 @@ import { arrange, DEFAULT_ARRANGEMENT } from './arrange.ts';
 import { sortPaths } from './ordering.ts';
 import { pathMoves, plotJobMoves, plotTime } from './plotJob.ts';
 import type { PlotPath } from './paths.ts';
+import { queueOf } from '../../../../core/maxl.ts';
 
 const pen: PenSettings = { channel: 'pen', up: 0, down: 1, delayUp_s: 0.1, delayDown_s: 0.15, drawSpeed: 40, travelSpeed: 120, axes: ['x', 'y'] };
 const blot = blotPlotter().config;
@@ -62,10 +63,10 @@ describe('the plot time', () => {
   /** The queue's own plan of the whole job: every move appended, planned to rest, durations summed. */
   function queueDuration(jobMoves: readonly Move[], floor_s: number): number {
     const maxl = createMAXL({ ...blot, queueCapacity: jobMoves.length + 10 }, { initialPosition: start });
-    maxl.queue.setMinSegmentDuration(floor_s);
-    for (const m of jobMoves) maxl.queue.append(m);
-    maxl.queue.planToRest();
-    return maxl.queue.segments().reduce((t, s) => t + s.duration_s, 0);
+    queueOf(maxl).setMinSegmentDuration(floor_s);
+    for (const m of jobMoves) queueOf(maxl).append(m);
+    queueOf(maxl).planToRest();
+    return queueOf(maxl).segments().reduce((t, s) => t + s.duration_s, 0);
   }
 
   it('is planPath’s duration of the job’s moves, dwells included', () => {

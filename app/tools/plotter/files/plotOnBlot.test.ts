@@ -11,7 +11,7 @@ import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { blotPlotter } from '../../../../core/sim/presets/index.ts';
 import { runJob, startMachine } from '../../../../core/system/harness.ts';
-import type { Segment } from '../../../../core/trajectory/segment.ts';
+import type { SegmentView } from '../../../../core/index.ts';
 import type { PenSettings } from '../penSequence.ts';
 import { arrange, DEFAULT_ARRANGEMENT, type Arrangement } from './arrange.ts';
 import { DEFAULT_CHORD_TOLERANCE_MM } from './flatten.ts';
@@ -33,7 +33,7 @@ async function plot(drawing: Drawing, arrangement: Arrangement) {
   const ordered = sortPaths(mergePaths(source, 0.05), [start[0], start[1]]);
   const moves = plotJobMoves(ordered, pen);
   const planned_s = plotTime(moves, preset.config.motionAxes, start, preset.config.limits, b.maxl.feedLimit?.minSegment_us ?? 0);
-  const sent: Segment[] = [];
+  const sent: SegmentView[] = [];
   b.maxl.queue.subscribe((e) => {
     if (e.type === 'transmitted') sent.push(...e.segments);
   });

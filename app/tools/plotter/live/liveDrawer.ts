@@ -26,7 +26,7 @@
  * (ToolContext.claim). STOP (or Esc) drops every move still waiting and says how
  * many strokes were not drawn.
  */
-import type { Maxl, Move, QueueEvent, Segment } from '../../../../core/index.ts';
+import type { Maxl, Move, QueueViewEvent, SegmentView } from '../../../../core/index.ts';
 import type { LogLevel } from '../../../worker/protocol.ts';
 import { drawTo, penDown, penUp, travelTo, type PenSettings } from '../penSequence.ts';
 import type { DrawStatus, StrokeProgress } from '../protocol.ts';
@@ -283,7 +283,7 @@ export class LiveDrawer {
     }
   }
 
-  private onQueue(e: QueueEvent): void {
+  private onQueue(e: QueueViewEvent): void {
     if (e.type === 'transmitted' || e.type === 'removed') {
       if (this.head < this.waiting.length) this.feed();
     } else if (e.type === 'historical') {
@@ -293,7 +293,7 @@ export class LiveDrawer {
   }
 
   /** The machine finished a segment: a whole move when it reaches the move's end (the streamer may have sliced it). */
-  private segmentDone(seg: Segment): void {
+  private segmentDone(seg: SegmentView): void {
     const m = this.inQueue.get(seg.moveId);
     if (!m) return;
     const along = seg.moveOffset + seg.length;

@@ -8,7 +8,7 @@
  * ends it. Slices of one move (the streamer locks long moves in slices) simply
  * continue the stroke.
  */
-import type { Maxl, QueueEvent, Segment } from '../../../../core/index.ts';
+import type { Maxl, QueueViewEvent, SegmentView } from '../../../../core/index.ts';
 
 export class PlannedPen {
   /** Pen-down strokes, x, y pairs in machine mm. */
@@ -34,7 +34,7 @@ export class PlannedPen {
     this.open = false;
   }
 
-  private onQueue(e: QueueEvent, maxl: Maxl): void {
+  private onQueue(e: QueueViewEvent, maxl: Maxl): void {
     if (e.type !== 'transmitted') return;
     const pen = this.pen();
     if (!pen) return;
@@ -44,7 +44,7 @@ export class PlannedPen {
     for (const seg of e.segments) this.add(seg, pen);
   }
 
-  private add(seg: Segment, pen: { up: number; down: number }): void {
+  private add(seg: SegmentView, pen: { up: number; down: number }): void {
     const value = seg.eventsAtStart?.[this.channel] ?? pen.up;
     const down = Math.abs(value - pen.down) < Math.abs(value - pen.up);
     if (!down) {

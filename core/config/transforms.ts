@@ -15,7 +15,7 @@
  * distance to the curve).
  */
 import { MaxlError, configError } from '../errors.ts';
-import type { TransformConfig } from '../config/types.ts';
+import type { ResolvedTransform, TransformConfig } from './types.ts';
 
 export const DEFAULT_TRANSFORM_TOLERANCE_MM = 0.01;
 /**
@@ -33,17 +33,7 @@ const MAX_DEPTH = 24;
  */
 export const MAX_PIECES_PER_MOVE = 10_000;
 
-export interface ResolvedTransform {
-  type: TransformConfig['type'];
-  /** Indices of the input motion axes. */
-  inputs: number[];
-  /** Names of the output actuator axes. */
-  outputs: string[];
-  linear: boolean;
-  /** Output units (mm for a motor on a belt). */
-  tolerance: number;
-  evaluate(input: readonly number[]): number[];
-}
+export type { ResolvedTransform };
 
 function matrixTransform(matrix: number[][]): (input: readonly number[]) => number[] {
   return (input) => matrix.map((row) => row.reduce((acc, m, i) => acc + m * input[i], 0));

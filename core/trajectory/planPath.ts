@@ -19,10 +19,10 @@
 import { resolveLimits } from '../config/limits.ts';
 import type { LimitsConfig, ResolvedConfig } from '../config/types.ts';
 import { MaxlError } from '../errors.ts';
-import { trapezoidDuration } from './phases.ts';
-import { LookaheadPlanner } from './lookahead.ts';
+import { trapezoidDuration } from '../plan/phases.ts';
+import { LookaheadPlanner } from '../plan/lookahead.ts';
 import { ColumnarPlannedPath, PathColumns, type PlannedPath } from './plannedPath.ts';
-import { dwellAccel, entryCap2, floorCruise2, lineAccel, lineCruise2, validateMove, ZERO_LENGTH_MM, type Move, type ValidatedMove } from '../trajectory/moves.ts';
+import { dwellAccel, entryCap2, floorCruise2, lineAccel, lineCruise2, validateMove, ZERO_LENGTH_MM, type Move, type ValidatedMove } from './moves.ts';
 
 export type { PathSample, PlannedPath, PlannedSegment } from './plannedPath.ts';
 

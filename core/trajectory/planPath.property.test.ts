@@ -8,6 +8,7 @@ import fc from 'fast-check';
 import { createMAXL, planPath, type LimitsConfig, type PathMove } from '../index.ts';
 import { resolveLimits } from '../config/limits.ts';
 import { refDuration, refBlocks, refJunctionSpeeds2, refJunctionCap2, type RefLimits } from '../testing/referencePlanner.ts';
+import { queueOf } from '../maxl.ts';
 
 const REL = 1e-9;
 
@@ -275,10 +276,10 @@ describe.each([2, 3])('planPath with dwells in %i axes', (axes) => {
         // The queue, given the same floor and the same moves, plans the same segments.
         const axisNames = path.points[0].map((_, i) => `a${i}`);
         const maxl = createMAXL({ motionAxes: axisNames, limits }, { initialPosition: path.points[0] });
-        maxl.queue.setMinSegmentDuration(floor_us * 1e-6);
-        for (const m of moves) maxl.queue.append('dwell_s' in m ? { dwell_s: m.dwell_s } : { endPosition: m.end, maxVelocity: m.maxVelocity });
-        maxl.queue.planToRest();
-        const queued = maxl.queue.segments();
+        queueOf(maxl).setMinSegmentDuration(floor_us * 1e-6);
+        for (const m of moves) queueOf(maxl).append('dwell_s' in m ? { dwell_s: m.dwell_s } : { endPosition: m.end, maxVelocity: m.maxVelocity });
+        queueOf(maxl).planToRest();
+        const queued = queueOf(maxl).segments();
         expect(queued.map((s) => s.duration_s)).toEqual(p.segments.map((s) => s.duration));
       }),
     );

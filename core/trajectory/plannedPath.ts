@@ -12,8 +12,8 @@
  * object needs them.
  */
 import { MaxlError } from '../errors.ts';
-import { dwellTiming, phasesOf, trapezoidTiming, type Phase, type Timing } from './phases.ts';
-import { sampleTimeline, type TimedSegment, type TrajectorySample } from '../trajectory/tracks.ts';
+import { dwellTiming, phasesOf, trapezoidTiming, type Phase, type Timing } from '../plan/phases.ts';
+import { sampleTimeline, type TimedSegment, type TrajectorySample } from './tracks.ts';
 
 export interface PlannedSegment {
   start: number[];

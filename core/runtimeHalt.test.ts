@@ -4,8 +4,8 @@
  * Runs the simulated light painter (real firmware in wasm) in virtual time.
  */
 import { describe, expect, it } from 'vitest';
-import { startMachine } from '../system/harness.ts';
-import { lightPainter } from '../sim/presets/index.ts';
+import { startMachine } from './system/harness.ts';
+import { lightPainter } from './sim/presets/index.ts';
 
 describe('halt mid-job', () => {
   it('halts every device, and their motors stop', async () => {

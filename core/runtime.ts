@@ -10,21 +10,21 @@
  *   halt()   stops every device now (HALT), drops everything queued.
  *   estimate()  where the machine is now, by the author's clock.
  */
-import { MaxlError } from '../errors.ts';
-import type { Scheduler } from '../time/scheduler.ts';
-import type { TrajectoryQueue } from '../trajectory/queue.ts';
-import type { Segment } from '../trajectory/segment.ts';
-import type { TrajectorySample } from '../trajectory/tracks.ts';
-import type { ResolvedConfig } from '../config/types.ts';
-import { bindSubscriptions, type DevicePlan } from './bindings.ts';
-import { SensorCapture, type SampleGap } from '../capture/sensorCapture.ts';
-import type { Link } from './link.ts';
-import type { MessageOf } from './messages.ts';
-import { DeviceState, nameOf, type DeviceStateName } from './protocol.ts';
-import { DeviceSession, type DeviceInfo, type SessionOptions } from './session.ts';
-import { Streamer, type StreamerEvent, type StreamerOptions } from './streamer.ts';
-import { feedLimit, type FeedLimit } from './linkFeedLimit.ts';
-import { WIRE_MIN_SEGMENT_S } from '../trajectory/moves.ts';
+import { MaxlError } from './errors.ts';
+import type { Scheduler } from './time/scheduler.ts';
+import type { TrajectoryQueue } from './trajectory/queue.ts';
+import type { Segment } from './trajectory/segment.ts';
+import type { TrajectorySample } from './trajectory/tracks.ts';
+import type { ResolvedConfig } from './config/types.ts';
+import { bindSubscriptions, type DevicePlan } from './net/bindings.ts';
+import { SensorCapture, type SampleGap } from './capture/sensorCapture.ts';
+import type { Link } from './net/link.ts';
+import type { MessageOf } from './net/messages.ts';
+import { DeviceState, nameOf, type DeviceStateName } from './net/protocol.ts';
+import { DeviceSession, type DeviceInfo, type SessionOptions } from './net/session.ts';
+import { Streamer, type StreamerEvent, type StreamerOptions } from './net/streamer.ts';
+import { feedLimit, type FeedLimit } from './net/linkFeedLimit.ts';
+import { WIRE_MIN_SEGMENT_S } from './trajectory/moves.ts';
 
 export interface RuntimeOptions {
   links: Link[];
@@ -167,7 +167,7 @@ export class Runtime {
       .filter((p) => p.readsTrajectory)
       .map((p) => {
         const session = this.sessions[infos.findIndex((i) => i.name === p.device)];
-        return { name: p.device, session, positionSlots: p.positionSlots, eventSlots: p.eventSlots, capacity: (session.info as DeviceInfo).segmentCapacity };
+        return { name: p.device, device: session, positionSlots: p.positionSlots, eventSlots: p.eventSlots, capacity: (session.info as DeviceInfo).segmentCapacity };
       });
     this.streamer = new Streamer(this.host.queue, this.scheduler, bindings, (e) => this.onStreamer(e), this.options.streamer);
     this.streamer.start();

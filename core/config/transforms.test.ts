@@ -1,6 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import fc from 'fast-check';
 import { createMAXL, type MaxlConfig, type TransformConfig } from '../index.ts';
+import { queueOf } from '../maxl.ts';
 
 const limits = { maxVelocity: 200, maxAcceleration: 2000 };
 const machine = (transforms: TransformConfig[]): MaxlConfig => ({ motionAxes: ['x', 'y'], limits, transforms });
@@ -8,11 +9,11 @@ const machine = (transforms: TransformConfig[]): MaxlConfig => ({ motionAxes: ['
 /** Every actuator track along every transmitted segment, sampled densely, against the exact transform. */
 function worstActuatorError(cfg: MaxlConfig, exact: (p: number[]) => number[], path: number[][], start = [0, 0]) {
   const maxl = createMAXL(cfg, { initialPosition: start });
-  for (const p of path) maxl.queue.append({ endPosition: p });
-  maxl.queue.planToRest();
+  for (const p of path) queueOf(maxl).append({ endPosition: p });
+  queueOf(maxl).planToRest();
   let worst = 0;
   let segments = 0;
-  for (let seg = maxl.queue.transmitNext(0); seg; seg = maxl.queue.transmitNext(0)) {
+  for (let seg = queueOf(maxl).transmitNext(0); seg; seg = queueOf(maxl).transmitNext(0)) {
     segments++;
     for (let k = 0; k <= 64; k++) {
       const t = seg.startTime_us + ((seg.endTime_us - seg.startTime_us) * k) / 64;
@@ -110,10 +111,10 @@ describe('transforms', () => {
   it('keeps both cartesian and actuator tracks, with the cartesian path still straight', () => {
     const polar = ([x, y]: readonly number[]) => [Math.hypot(x, y), Math.atan2(y, x)];
     const maxl = createMAXL(machine([{ type: 'function', from: ['x', 'y'], to: ['r', 'theta'], fn: polar }]), { initialPosition: [10, 0] });
-    maxl.queue.append({ endPosition: [10, 10] });
-    maxl.queue.planToRest();
+    queueOf(maxl).append({ endPosition: [10, 10] });
+    queueOf(maxl).planToRest();
     const segs = [];
-    for (let s = maxl.queue.transmitNext(0); s; s = maxl.queue.transmitNext(0)) segs.push(s);
+    for (let s = queueOf(maxl).transmitNext(0); s; s = queueOf(maxl).transmitNext(0)) segs.push(s);
     expect(segs.length).toBeGreaterThan(1);
     for (const s of segs) {
       expect(s.start[0]).toBeCloseTo(10, 12);

@@ -1,0 +1,91 @@
+/**
+ * The job runner on a simulated Blot (real firmware in wasm, virtual time): it
+ * awaits addSegmentToQueue and whenIdle with the run's AbortSignal instead of
+ * polling, so a job is done exactly when the machine finished it, a cancel drops
+ * the move waiting for room, and a pause is not mistaken for the end.
+ */
+import { describe, expect, it } from 'vitest';
+import type { Move } from '../../core/index.ts';
+import { blotPlotter } from '../../core/sim/presets/index.ts';
+import { startMachine, type Bench } from '../../core/system/harness.ts';
+import { JobRunner } from './jobRunner.ts';
+import type { JobPhase } from './protocol.ts';
+
+/** n moves of 1 mm, back and forth along a row in the middle of the bed: more than the queue holds. */
+function zigzag(n: number): Move[] {
+  return Array.from({ length: n }, (_, i) => ({ endPosition: [40 + (i % 2), 40 + Math.floor(i / 2) * 0.01], maxVelocity: 60 }));
+}
+
+async function setup(moves: number) {
+  const b = await startMachine(blotPlotter());
+  const logs: string[] = [];
+  const runner = new JobRunner({ log: (_level, code, message) => logs.push(`${code} ${message}`), preview: () => {} });
+  // As the workbench's snapshot builder does: finished segments count as progress.
+  b.maxl.queue.subscribe((e) => {
+    if (e.type === 'historical') for (const s of e.segments) runner.onHistorical(s);
+  });
+  expect(runner.startMoves({ name: 'zigzag', moves: zigzag(moves) }, b.maxl)).toBe(true);
+  const phase = () => runner.progress()?.phase as JobPhase;
+  return { b, runner, logs, phase };
+}
+
+/** Runs virtual time while `busy`, at most `limit_us`. */
+async function runWhile(b: Bench, busy: () => boolean, limit_us = 60_000_000): Promise<void> {
+  await b.scheduler.runWhile(busy, b.scheduler.now() + limit_us);
+}
+
+describe('JobRunner', () => {
+  it('is done when the machine has run every move, not before', async () => {
+    const { b, runner, logs, phase } = await setup(700);
+    let doneWhileMoving = false;
+    await runWhile(b, () => {
+      if (phase() === 'done' && b.maxl.queue.transmittedEnd_us > b.scheduler.now()) doneWhileMoving = true;
+      return phase() === 'running';
+    });
+    expect(phase()).toBe('done');
+    expect(doneWhileMoving).toBe(false);
+    expect(runner.fed).toBe(700);
+    expect(b.maxl.queue.untransmittedCount).toBe(0);
+    expect(b.maxl.queue.transmittedEnd_us).toBeLessThanOrEqual(b.scheduler.now());
+    expect(runner.progress()?.doneSegments).toBe(700);
+    expect(logs.at(-1)).toMatch(/^JOB “zigzag” done: 700 segments/);
+  });
+
+  it('a cancel while the feed waits for room queues none of the job’s later moves', async () => {
+    const { b, runner, phase } = await setup(3000);
+    // The queue (512) fills long before 3 000 moves are fed: the feed then waits for room.
+    await runWhile(b, () => b.maxl.queue.hasRoom() || runner.fed < 512);
+    expect(runner.fed).toBeLessThan(3000);
+    const lastQueuedMove = Math.max(...b.maxl.queue.segments().map((s) => s.moveId));
+    const addedAfter: number[] = [];
+    b.maxl.queue.subscribe((e) => {
+      if (e.type === 'added') for (const s of e.segments) addedAfter.push(s.moveId);
+    });
+    const fedAtCancel = runner.fed;
+    runner.cancel();
+    await runWhile(b, () => phase() === 'cancelling');
+    expect(phase()).toBe('cancelled');
+    // Only pieces of moves queued before the cancel (the stop splits one) were added since.
+    expect(addedAfter.every((id) => id <= lastQueuedMove)).toBe(true);
+    expect(runner.fed).toBe(fedAtCancel);
+    // Time goes on: nothing more comes.
+    await b.scheduler.advance(500_000);
+    expect(runner.fed).toBe(fedAtCancel);
+    expect(b.maxl.queue.untransmittedCount).toBe(0);
+  });
+
+  it('a paused job is not done while it holds at rest, and finishes after resume', async () => {
+    const { b, runner, phase } = await setup(700);
+    await b.scheduler.advance(300_000);
+    runner.pause();
+    await runWhile(b, () => phase() === 'pausing');
+    expect(phase()).toBe('paused');
+    await b.scheduler.advance(1_000_000);
+    expect(phase()).toBe('paused');
+    expect(b.maxl.queue.untransmittedCount).toBeGreaterThan(0);
+    runner.resume();
+    await runWhile(b, () => phase() === 'running');
+    expect(phase()).toBe('done');
+    expect(runner.progress()?.doneSegments).toBe(700);
+  });
+});
