@@ -1,0 +1,153 @@
+#include "maxl/readers/step_planner.h"
+
+#if MAXL_STEP_TIMER
+
+#include "maxl/device/device.h"
+#include "maxl/readers/stepper.h"
+#include "maxl/time/wrap.h"
+
+using namespace maxl_fw;
+
+MAXL_Stepper* MAXL_StepPlanner::members_[MAXL_STEP_CHANNELS];
+uint8_t MAXL_StepPlanner::count_ = 0;
+uint32_t MAXL_StepPlanner::planned_ = 0;
+
+void MAXL_StepPlanner::join(MAXL_Stepper* stepper) {
+  for (uint8_t i = 0; i < count_; i++)
+    if (members_[i] == stepper) return;
+  if (count_ < MAXL_STEP_CHANNELS) members_[count_++] = stepper;
+}
+
+void MAXL_StepPlanner::leave(MAXL_Stepper* stepper) {
+  for (uint8_t i = 0; i < count_; i++) {
+    if (members_[i] != stepper) continue;
+    for (uint8_t j = i; j + 1 < count_; j++) members_[j] = members_[j + 1];
+    count_--;
+    return;
+  }
+}
+
+uint8_t MAXL_StepPlanner::active(MAXL_Stepper** out) {
+  uint8_t n = 0;
+  for (uint8_t i = 0; i < count_; i++)
+    if (members_[i]->subscribed() && members_[i]->known()) out[n++] = members_[i];
+  return n;
+}
+
+// The grid starts again for all of `steppers` (one of them is new, Motion's
+// path changed other than by new timing, or the plan fell far behind). The
+// lookahead never plans past what is certain, so only a HALT can have made
+// planned steps wrong: HALT mode 0 from the device clock on, mode 1 from its
+// time. Those steps are taken back (if still in the rings), then the plan goes
+// on from Motion's new state. A plan far behind the clock (`stale`: loop()
+// stalled for more than 8 ms) starts again at the clock; what the rings still
+// hold goes out at once, and the windows catch the motors up.
+__attribute__((noinline)) void MAXL_StepPlanner::restart(MAXL_Device& device, MAXL_Stepper* const* steppers, uint8_t n,
+                                                         bool stale) {
+  const Motion& motion = device.motion();
+  uint32_t now = device.now();
+  bool planning = false;  // some stepper follows the grid: planned_ holds
+  for (uint8_t i = 0; i < n; i++) planning |= steppers[i]->synced_;
+  if (planning && !stale) {
+    uint32_t from = motion.haltPending() && timeBefore(now, motion.haltAt()) ? motion.haltAt() : now;
+    if (timeBefore(from, planned_)) {
+      for (uint8_t i = 0; i < n; i++) steppers[i]->dropFrom(from);
+      planned_ = from;
+    }
+  } else {
+    planned_ = now;
+  }
+  for (uint8_t i = 0; i < n; i++) motion.lookFrom(steppers[i]->look_, steppers[i]->slot());
+  const Lookahead& first = steppers[0]->look_;  // every slot's walk has the same times
+  if (first.state != Lookahead::REST && timeBefore(planned_, first.chunkStart)) planned_ = first.chunkStart;
+  for (uint8_t i = 0; i < n; i++) {
+    MAXL_Stepper& s = *steppers[i];
+    uint32_t until;
+    motion.lookSpan(s.look_, s.slot(), planned_, until);  // crosses what lies before planned_
+    s.plannedUnits_ = motion.lookAt(s.look_, s.slot(), planned_);
+    s.synced_ = true;
+  }
+}
+
+// Not certain past planned_ and at rest (no timing ahead): the position holds
+// at least until the device clock, so the plan catches up to it.
+void MAXL_StepPlanner::catchUpAtRest(MAXL_Device& device, MAXL_Stepper* const* steppers, uint8_t n, uint32_t now) {
+  const Motion& motion = device.motion();
+  for (uint8_t i = 0; i < n; i++) {
+    MAXL_Stepper& s = *steppers[i];
+    int32_t here = motion.lookAt(s.look_, s.slot(), now);
+    s.schedule(planned_, now, here, here, 0, now);
+    s.plannedUnits_ = here;
+  }
+  planned_ = now;
+}
+
+// The end of the next window from planned_ (the piece ends at `until`) and
+// every stepper's position there (p1). A window holds at most
+// MAXL_STEP_WINDOW_STEPS steps of any stepper (a run's count is 7 bits, and a
+// burst may need the rest): where one would hold more, the lookaheads go back
+// (copies) and the window is halved.
+uint32_t MAXL_StepPlanner::windowEnd(MAXL_Device& device, MAXL_Stepper* const* steppers, uint8_t n, uint32_t until,
+                                     int32_t* p1) {
+  const Motion& motion = device.motion();
+  if (steppers[0]->look_.state == Lookahead::REST) {
+    for (uint8_t i = 0; i < n; i++) p1[i] = motion.lookAt(steppers[i]->look_, steppers[i]->slot(), until);
+    return until;
+  }
+  uint16_t w = MAXL_STEP_WINDOW_MAX_US;
+  Lookahead before[MAXL_STEP_CHANNELS];
+  for (uint8_t i = 0; i < n; i++) {
+    uint16_t wi = steppers[i]->windowFor(motion.lookCurvature(steppers[i]->look_));
+    if (wi < w) w = wi;
+    before[i] = steppers[i]->look_;
+  }
+  for (;;) {
+    uint32_t t1 = (planned_ & ~(uint32_t)(w - 1)) + w;  // the next multiple of w
+    if (timeBefore(until, t1)) t1 = until;
+    bool tooMany = false;
+    for (uint8_t i = 0; i < n; i++) {
+      MAXL_Stepper& s = *steppers[i];
+      p1[i] = motion.lookAt(s.look_, s.slot(), t1);
+      tooMany |= s.tooManySteps((int32_t)((uint32_t)p1[i] - (uint32_t)s.plannedUnits_));
+    }
+    if (w <= MAXL_STEP_WINDOW_MIN_US || !tooMany) return t1;
+    for (uint8_t i = 0; i < n; i++) steppers[i]->look_ = before[i];
+    w >>= 1;
+  }
+}
+
+__attribute__((noinline)) void MAXL_StepPlanner::plan(MAXL_Device& device, MAXL_Stepper* caller) {
+  MAXL_Stepper* steppers[MAXL_STEP_CHANNELS];
+  uint8_t n = active(steppers);
+  if (!n || steppers[0] != caller) return;
+  const Motion& motion = device.motion();
+  uint32_t now = device.now();
+  bool fresh = true;
+  for (uint8_t i = 0; i < n; i++) fresh &= steppers[i]->synced_ && steppers[i]->look_.epoch == motion.epoch();
+  bool stale = fresh && timeBefore(planned_ + 8000u, now);
+  if (!fresh || stale) restart(device, steppers, n, stale);
+  const uint32_t horizon = now + MAXL_STEP_LEAD_US;
+  int32_t p1[MAXL_STEP_CHANNELS];
+  while (timeBefore(planned_, horizon)) {
+    for (uint8_t i = 0; i < n; i++)
+      if (steppers[i]->generator_.channel().free() < 2) return;  // a window takes up to two runs
+    uint32_t until = 0;
+    for (uint8_t i = 0; i < n; i++) {
+      uint32_t u;
+      if (!motion.lookSpan(steppers[i]->look_, steppers[i]->slot(), planned_, u)) {
+        if (steppers[0]->look_.state == Lookahead::REST && timeBefore(planned_, now)) catchUpAtRest(device, steppers, n, now);
+        return;
+      }
+      if (i == 0 || timeBefore(u, until)) until = u;
+    }
+    uint32_t t1 = windowEnd(device, steppers, n, until, p1);
+    for (uint8_t i = 0; i < n; i++) {
+      MAXL_Stepper& s = *steppers[i];
+      s.schedule(planned_, t1, s.plannedUnits_, p1[i], motion.lookCurvature(s.look_), now);
+      s.plannedUnits_ = p1[i];
+    }
+    planned_ = t1;
+  }
+}
+
+#endif  // MAXL_STEP_TIMER
