@@ -131,14 +131,19 @@ __attribute__((noinline)) void MAXL_StepPlanner::plan(MAXL_Device& device, MAXL_
   while (timeBefore(planned_, horizon)) {
     for (uint8_t i = 0; i < n; i++)
       if (steppers[i]->generator_.channel().free() < 2) return;  // a window takes up to two runs
+    // Every walk goes up to planned_ (the same boundaries for every slot).
     uint32_t until = 0;
+    bool certain = true;
     for (uint8_t i = 0; i < n; i++) {
       uint32_t u;
-      if (!motion.lookSpan(steppers[i]->look_, steppers[i]->slot(), planned_, u)) {
-        if (steppers[0]->look_.state == Lookahead::REST && timeBefore(planned_, now)) catchUpAtRest(device, steppers, n, now);
-        return;
-      }
-      if (i == 0 || timeBefore(u, until)) until = u;
+      if (!motion.lookSpan(steppers[i]->look_, steppers[i]->slot(), planned_, u))
+        certain = false;
+      else if (i == 0 || timeBefore(u, until))
+        until = u;
+    }
+    if (!certain) {
+      if (steppers[0]->look_.state == Lookahead::REST && timeBefore(planned_, now)) catchUpAtRest(device, steppers, n, now);
+      return;
     }
     uint32_t t1 = windowEnd(device, steppers, n, until, p1);
     for (uint8_t i = 0; i < n; i++) {

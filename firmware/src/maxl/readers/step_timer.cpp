@@ -217,23 +217,35 @@ void StepTimer::interrupt() { serviceAll(); }
 
 // The vector, in two parts.
 //
-// The fast path (assembly, 7 registers saved) is the common case at high
-// step rates: one channel on the timer, its step due, and not the last of
-// its run. It is exactly serviceAll() for that case: STEP high, the run moved
-// on (count − 1, next += interval), the compare set to the new step (or
-// MAXL_STEP_MIN_TICKS from now if that is later: arm()), STEP low. The
-// pulse is high for the ~60 cycles between the two stores (3.8 µs at 16 MHz,
-// over the 2 µs that common drivers need), so it needs no wait; DIR cannot
-// change inside a run. ~150 cycles in all, where the C handler takes ~280.
+// The fast path (assembly, 13 registers saved) is the common case at high
+// step rates: every channel whose step is due has more steps left in its
+// run. It is exactly serviceAll() for that case, for every channel on the
+// timer in one pass (GRBL's one interrupt for all axes):
 //
-// Everything else (several channels, a run's last step, nothing due, the
-// direction) restores every register as the interrupt found them and jumps
-// to the C handler, which saves what it uses and returns with reti.
+//   1. which channels are due (the 16-bit difference count − tick is not
+//      negative); a due channel at the last step of its run sends the whole
+//      interrupt to the C handler, and so does nothing due;
+//   2. each due channel: STEP high, count − 1, next += interval;
+//   3. the compare goes to the earliest next step of every channel with a run
+//      (or MAXL_STEP_MIN_TICKS from the count, if that is later: arm());
+//   4. each due channel: STEP low.
 //
-// The fast path reads the channel at fixed offsets: current_ (next 0..3,
+// A pulse is high from its channel's step 2 to its step 4, at least the ~50
+// cycles of steps 2 (the rest), 3 and 4 (3 µs at 16 MHz, over the 2 µs that
+// common drivers need), so it needs no wait; DIR cannot change inside a run.
+// ~190 cycles for one channel, ~270 for two due at once, where the C handler
+// takes ~280 for one.
+//
+// Everything else (a run's last step, nothing due, the direction) restores
+// every register as the interrupt found them and jumps to the C handler,
+// which saves what it uses and returns with reti.
+//
+// The fast path reads each channel at fixed offsets: current_ (next 0..3,
 // interval 4..7, count 8), then stepPin (port 9..10, mask 11). An idle
 // channel's current_.count is 0 (dropAll, promote), so the count test also
-// covers "no run".
+// covers "no run". Registers: r18:r19 the count at entry, r20:r21 a
+// difference or the earliest one, r22 the due channels (bit i), r23 the
+// number of channels, Z a channel, X a port.
 namespace maxl_fw {
 namespace {
 #pragma GCC diagnostic push
@@ -244,14 +256,71 @@ static_assert(offsetof(StepChannel, current_) == 0 && sizeof(StepRun) == 9 && of
               "the step vector's fast path reads these offsets");
 #pragma GCC diagnostic pop
 static_assert(MAXL_STEP_MIN_TICKS <= 63, "adiw");
+static_assert(MAXL_STEP_CHANNELS <= 4, "the step vector's fast path has four channel blocks");
 }  // namespace
 }  // namespace maxl_fw
 
-// The registers the fast path uses, and SREG (through r24), saved and restored.
-#define MAXL_STEP_ISR_SAVE \
-  "push r24\n\tin   r24, __SREG__\n\tpush r24\n\tpush r25\n\tpush r26\n\tpush r27\n\tpush r30\n\tpush r31\n\t"
-#define MAXL_STEP_ISR_RESTORE \
+#define MAXL_STEP_ISR_SAVE                                                                                          \
+  "push r24\n\tin   r24, __SREG__\n\tpush r24\n\tpush r25\n\tpush r26\n\tpush r27\n\tpush r30\n\tpush r31\n\t"     \
+  "push r18\n\tpush r19\n\tpush r20\n\tpush r21\n\tpush r22\n\tpush r23\n\t"
+#define MAXL_STEP_ISR_RESTORE                                                                                       \
+  "pop  r23\n\tpop  r22\n\tpop  r21\n\tpop  r20\n\tpop  r19\n\tpop  r18\n\t"                                        \
   "pop  r31\n\tpop  r30\n\tpop  r27\n\tpop  r26\n\tpop  r25\n\tpop  r24\n\tout  __SREG__, r24\n\tpop  r24\n\t"
+
+// Z = channel i
+#define MAXL_STEP_ISR_CHANNEL(i) "lds  r30, %[ch]+2*" #i "\n\tlds  r31, %[ch]+2*" #i "+1\n\t"
+
+// 1. channel i due (bit i of r22), or the C handler
+#define MAXL_STEP_ISR_DUE(i)                                                                    \
+  "cpi  r23, " #i "+1\n\tbrlo 1f\n\t" MAXL_STEP_ISR_CHANNEL(i)                                  \
+  "ldd  r24, Z+8\n\tandi r24, 0x7F\n\tbreq 1f\n\t"                                              \
+  "movw r20, r18\n\tldd  r26, Z+2\n\tsub  r20, r26\n\tldd  r26, Z+3\n\tsbc  r21, r26\n\t"       \
+  "brmi 1f\n\t"                                                                                 \
+  "cpi  r24, 2\n\tbrsh 2f\n\trjmp 9f\n\t2:\n\t"                                                 \
+  "ori  r22, 1<<" #i "\n\t"                                                                     \
+  "1:\n\t"
+
+// 2. STEP high, count − 1 (BACKWARD, bit 7, stays), next += interval byte by byte
+#define MAXL_STEP_ISR_STEP(i)                                                                   \
+  "sbrs r22, " #i "\n\trjmp 4f\n\t" MAXL_STEP_ISR_CHANNEL(i)                                    \
+  "ldd  r26, Z+9\n\tldd  r27, Z+10\n\tldd  r25, Z+11\n\tld   r24, X\n\tor   r24, r25\n\tst   X, r24\n\t" \
+  "ldd  r24, Z+8\n\tdec  r24\n\tstd  Z+8, r24\n\t"                                              \
+  "ldd  r24, Z+0\n\tldd  r25, Z+4\n\tadd  r24, r25\n\tstd  Z+0, r24\n\t"                        \
+  "ldd  r24, Z+1\n\tldd  r25, Z+5\n\tadc  r24, r25\n\tstd  Z+1, r24\n\t"                        \
+  "ldd  r24, Z+2\n\tldd  r25, Z+6\n\tadc  r24, r25\n\tstd  Z+2, r24\n\t"                        \
+  "ldd  r24, Z+3\n\tldd  r25, Z+7\n\tadc  r24, r25\n\tstd  Z+3, r24\n\t"                        \
+  "4:\n\t"
+
+// 3. r20:r21 = the least tick − count over the channels with a run (signed)
+#define MAXL_STEP_ISR_EARLIEST(i)                                                               \
+  "cpi  r23, " #i "+1\n\tbrlo 5f\n\t" MAXL_STEP_ISR_CHANNEL(i)                                  \
+  "ldd  r24, Z+8\n\tandi r24, 0x7F\n\tbreq 5f\n\t"                                              \
+  "ldd  r24, Z+2\n\tldd  r25, Z+3\n\tsub  r24, r18\n\tsbc  r25, r19\n\t"                        \
+  "cp   r24, r20\n\tcpc  r25, r21\n\tbrge 5f\n\tmovw r20, r24\n\t"                              \
+  "5:\n\t"
+
+// 4. STEP low
+#define MAXL_STEP_ISR_LOW(i)                                                                    \
+  "sbrs r22, " #i "\n\trjmp 6f\n\t" MAXL_STEP_ISR_CHANNEL(i)                                    \
+  "ldd  r26, Z+9\n\tldd  r27, Z+10\n\tldd  r25, Z+11\n\tld   r24, X\n\tcom  r25\n\tand  r24, r25\n\tst   X, r24\n\t" \
+  "6:\n\t"
+
+#if MAXL_STEP_CHANNELS >= 2
+#define MAXL_STEP_ISR_EACH_2(M) M(1)
+#else
+#define MAXL_STEP_ISR_EACH_2(M)
+#endif
+#if MAXL_STEP_CHANNELS >= 3
+#define MAXL_STEP_ISR_EACH_3(M) M(2)
+#else
+#define MAXL_STEP_ISR_EACH_3(M)
+#endif
+#if MAXL_STEP_CHANNELS >= 4
+#define MAXL_STEP_ISR_EACH_4(M) M(3)
+#else
+#define MAXL_STEP_ISR_EACH_4(M)
+#endif
+#define MAXL_STEP_ISR_EACH(M) M(0) MAXL_STEP_ISR_EACH_2(M) MAXL_STEP_ISR_EACH_3(M) MAXL_STEP_ISR_EACH_4(M)
 
 extern "C" void __vector_maxl_step_slow(void) __attribute__((signal, used, externally_visible));
 void __vector_maxl_step_slow(void) { maxl_fw::serviceAll(); }
@@ -259,83 +328,40 @@ void __vector_maxl_step_slow(void) { maxl_fw::serviceAll(); }
 ISR(TIMER1_COMPB_vect, ISR_NAKED) {
   __asm__ __volatile__(
       MAXL_STEP_ISR_SAVE
-      // one channel, Z = it
-      "lds  r24, %[channels]\n\t"
-      "cpi  r24, 1\n\t"
-      "brne 9f\n\t"
-      "lds  r30, %[channel0]\n\t"
-      "lds  r31, %[channel0]+1\n\t"
-      // at least 2 steps left in the run going out
-      "ldd  r24, Z+8\n\t"
-      "andi r24, 0x7F\n\t"
-      "cpi  r24, 2\n\t"
-      "brlo 9f\n\t"
-      // due: the 16-bit difference count − tick is not negative
-      "lds  r26, %[tcntl]\n\t"
-      "lds  r27, %[tcnth]\n\t"
-      "ldd  r24, Z+2\n\t"
-      "ldd  r25, Z+3\n\t"
-      "cp   r26, r24\n\t"
-      "cpc  r27, r25\n\t"
-      "brpl 2f\n\t"
-      // everything else (here, within reach of the branches above)
+      "lds  r18, %[tcntl]\n\t"
+      "lds  r19, %[tcnth]\n\t"
+      "clr  r22\n\t"
+      "lds  r23, %[channels]\n\t"
+      MAXL_STEP_ISR_EACH(MAXL_STEP_ISR_DUE)
+      "tst  r22\n\t"
+      "brne 8f\n\t"
+      // everything else: the C handler
       "9:\n\t"
       MAXL_STEP_ISR_RESTORE
       "jmp  __vector_maxl_step_slow\n\t"
-      "2:\n\t"
-      // STEP high
-      "ldd  r26, Z+9\n\t"
-      "ldd  r27, Z+10\n\t"
-      "ldd  r25, Z+11\n\t"
-      "ld   r24, X\n\t"
-      "or   r24, r25\n\t"
-      "st   X, r24\n\t"
-      // count − 1 (BACKWARD, bit 7, stays)
-      "ldd  r24, Z+8\n\t"
-      "dec  r24\n\t"
-      "std  Z+8, r24\n\t"
-      // next += interval, byte by byte
-      "ldd  r24, Z+0\n\t"
-      "ldd  r25, Z+4\n\t"
-      "add  r24, r25\n\t"
-      "std  Z+0, r24\n\t"
-      "ldd  r24, Z+1\n\t"
-      "ldd  r25, Z+5\n\t"
-      "adc  r24, r25\n\t"
-      "std  Z+1, r24\n\t"
-      "ldd  r24, Z+2\n\t"
-      "ldd  r25, Z+6\n\t"
-      "adc  r24, r25\n\t"
-      "std  Z+2, r24\n\t"
-      "ldd  r24, Z+3\n\t"
-      "ldd  r25, Z+7\n\t"
-      "adc  r24, r25\n\t"
-      "std  Z+3, r24\n\t"
-      // compare = the new tick, or count + MAXL_STEP_MIN_TICKS if that is later
+      "8:\n\t"
+      MAXL_STEP_ISR_EACH(MAXL_STEP_ISR_STEP)
+      "ldi  r20, 0xFF\n\t"
+      "ldi  r21, 0x7F\n\t"
+      MAXL_STEP_ISR_EACH(MAXL_STEP_ISR_EARLIEST)
+      // compare = count at entry + the least difference, or the count now + MAXL_STEP_MIN_TICKS if that is later
+      "add  r20, r18\n\t"
+      "adc  r21, r19\n\t"
       "lds  r26, %[tcntl]\n\t"
       "lds  r27, %[tcnth]\n\t"
       "adiw r26, %[minTicks]\n\t"
-      "ldd  r24, Z+2\n\t"
-      "ldd  r25, Z+3\n\t"
-      "cp   r24, r26\n\t"
-      "cpc  r25, r27\n\t"
-      "brpl 1f\n\t"
-      "movw r24, r26\n\t"
-      "1:\n\t"
-      "sts  %[ocrh], r25\n\t"
-      "sts  %[ocrl], r24\n\t"
-      // STEP low
-      "ldd  r26, Z+9\n\t"
-      "ldd  r27, Z+10\n\t"
-      "ldd  r25, Z+11\n\t"
-      "ld   r24, X\n\t"
-      "com  r25\n\t"
-      "and  r24, r25\n\t"
-      "st   X, r24\n\t"
+      "cp   r20, r26\n\t"
+      "cpc  r21, r27\n\t"
+      "brpl 7f\n\t"
+      "movw r20, r26\n\t"
+      "7:\n\t"
+      "sts  %[ocrh], r21\n\t"
+      "sts  %[ocrl], r20\n\t"
+      MAXL_STEP_ISR_EACH(MAXL_STEP_ISR_LOW)
       MAXL_STEP_ISR_RESTORE
       "reti\n\t"
       :
-      : [channels] "i"(&maxl_fw::StepTimer::count_), [channel0] "i"(&maxl_fw::StepTimer::channels_[0]),
+      : [channels] "i"(&maxl_fw::StepTimer::count_), [ch] "i"(&maxl_fw::StepTimer::channels_[0]),
         [tcntl] "n"(_SFR_MEM_ADDR(TCNT1L)), [tcnth] "n"(_SFR_MEM_ADDR(TCNT1H)), [ocrl] "n"(_SFR_MEM_ADDR(OCR1BL)),
         [ocrh] "n"(_SFR_MEM_ADDR(OCR1BH)), [minTicks] "I"(MAXL_STEP_MIN_TICKS));
 }
