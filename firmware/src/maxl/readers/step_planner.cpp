@@ -11,11 +11,15 @@ using namespace maxl_fw;
 MAXL_Stepper* MAXL_StepPlanner::members_[MAXL_STEP_CHANNELS];
 uint8_t MAXL_StepPlanner::count_ = 0;
 uint32_t MAXL_StepPlanner::planned_ = 0;
+MAXL_Stepper* MAXL_StepPlanner::leader_ = 0;
+uint8_t MAXL_StepPlanner::epoch_ = 0;
+bool MAXL_StepPlanner::dirty_ = true;
 
 void MAXL_StepPlanner::join(MAXL_Stepper* stepper) {
   for (uint8_t i = 0; i < count_; i++)
     if (members_[i] == stepper) return;
   if (count_ < MAXL_STEP_CHANNELS) members_[count_++] = stepper;
+  dirty_ = true;
 }
 
 void MAXL_StepPlanner::leave(MAXL_Stepper* stepper) {
@@ -23,6 +27,7 @@ void MAXL_StepPlanner::leave(MAXL_Stepper* stepper) {
     if (members_[i] != stepper) continue;
     for (uint8_t j = i; j + 1 < count_; j++) members_[j] = members_[j + 1];
     count_--;
+    dirty_ = true;
     return;
   }
 }
@@ -95,11 +100,18 @@ uint32_t MAXL_StepPlanner::windowEnd(MAXL_Device& device, MAXL_Stepper* const* s
     return until;
   }
   uint16_t w = MAXL_STEP_WINDOW_MAX_US;
-  Lookahead before[MAXL_STEP_CHANNELS];
+  // what lookAt() moves on: the chunk start and the track's P and B
+  struct Saved {
+    uint32_t chunkStart;
+    int32_t p, b;
+  } before[MAXL_STEP_CHANNELS];
   for (uint8_t i = 0; i < n; i++) {
-    uint16_t wi = steppers[i]->windowFor(motion.lookCurvature(steppers[i]->look_));
+    const Lookahead& a = steppers[i]->look_;
+    uint16_t wi = steppers[i]->windowFor(motion.lookCurvature(a));
     if (wi < w) w = wi;
-    before[i] = steppers[i]->look_;
+    before[i].chunkStart = a.chunkStart;
+    before[i].p = a.track.P;
+    before[i].b = a.track.B;
   }
   for (;;) {
     uint32_t t1 = (planned_ & ~(uint32_t)(w - 1)) + w;  // the next multiple of w
@@ -111,17 +123,39 @@ uint32_t MAXL_StepPlanner::windowEnd(MAXL_Device& device, MAXL_Stepper* const* s
       tooMany |= s.tooManySteps((int32_t)((uint32_t)p1[i] - (uint32_t)s.plannedUnits_));
     }
     if (w <= MAXL_STEP_WINDOW_MIN_US || !tooMany) return t1;
-    for (uint8_t i = 0; i < n; i++) steppers[i]->look_ = before[i];
+    for (uint8_t i = 0; i < n; i++) {
+      Lookahead& a = steppers[i]->look_;
+      a.chunkStart = before[i].chunkStart;
+      a.track.P = before[i].p;
+      a.track.B = before[i].b;
+    }
     w >>= 1;
   }
 }
 
-__attribute__((noinline)) void MAXL_StepPlanner::plan(MAXL_Device& device, MAXL_Stepper* caller) {
+// Most loops: nothing changed, and the plan is far enough ahead or the
+// leader's ring is full (every stepper gets a run per window, so the rings
+// fill together; planMore() checks them all). Kept small, so that such a
+// loop does not pay planMore()'s register saves.
+void MAXL_StepPlanner::plan(MAXL_Device& device, MAXL_Stepper* caller) {
+  if (!dirty_) {
+    if (caller != leader_) return;
+    if (device.motion().epoch() == epoch_ &&
+        (!timeBefore(planned_, device.now() + MAXL_STEP_LEAD_US) || caller->generator_.channel().free() < 2))
+      return;
+  }
+  planMore(device, caller);
+}
+
+__attribute__((noinline)) void MAXL_StepPlanner::planMore(MAXL_Device& device, MAXL_Stepper* caller) {
+  const Motion& motion = device.motion();
+  uint32_t now = device.now();
   MAXL_Stepper* steppers[MAXL_STEP_CHANNELS];
   uint8_t n = active(steppers);
   if (!n || steppers[0] != caller) return;
-  const Motion& motion = device.motion();
-  uint32_t now = device.now();
+  dirty_ = false;
+  leader_ = caller;
+  epoch_ = motion.epoch();
   bool fresh = true;
   for (uint8_t i = 0; i < n; i++) fresh &= steppers[i]->synced_ && steppers[i]->look_.epoch == motion.epoch();
   bool stale = fresh && timeBefore(planned_ + 8000u, now);

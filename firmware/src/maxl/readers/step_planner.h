@@ -44,6 +44,7 @@ class MAXL_StepPlanner {
   static void plan(MAXL_Device& device, MAXL_Stepper* caller);
 
  private:
+  static void planMore(MAXL_Device& device, MAXL_Stepper* caller);
   // The steppers taking part now (subscribed, position known); returns how many.
   static uint8_t active(MAXL_Stepper** out);
   static void restart(MAXL_Device& device, MAXL_Stepper* const* steppers, uint8_t n, bool stale);
@@ -53,6 +54,12 @@ class MAXL_StepPlanner {
   static MAXL_Stepper* members_[MAXL_STEP_CHANNELS];
   static uint8_t count_;
   static uint32_t planned_;  // device µs the plan reaches
+  static MAXL_Stepper* leader_;  // the stepper that plans (the first taking part)
+  static uint8_t epoch_;     // Motion's epoch when the leader last planned
+  static bool dirty_;        // who takes part may have changed: find the leader again
+ public:
+  // A stepper stopped or started following the grid (MAXL_Stepper::stopTimed).
+  static void changed() { dirty_ = true; }
 };
 
 #endif  // MAXL_STEP_TIMER

@@ -222,18 +222,20 @@ void StepTimer::interrupt() { serviceAll(); }
 // run. It is exactly serviceAll() for that case, for every channel on the
 // timer in one pass (GRBL's one interrupt for all axes):
 //
-//   1. which channels are due (the 16-bit difference count − tick is not
-//      negative); a due channel at the last step of its run sends the whole
-//      interrupt to the C handler, and so does nothing due;
-//   2. each due channel: STEP high, count − 1, next += interval;
-//   3. the compare goes to the earliest next step of every channel with a run
-//      (or MAXL_STEP_MIN_TICKS from the count, if that is later: arm());
+//   1. which channels are due (the 16-bit difference tick − count is not
+//      positive); a due channel at the last step of its run sends the whole
+//      interrupt to the C handler, and so does nothing due. The channels not
+//      due give the earliest difference so far;
+//   2. each due channel: STEP high, count − 1, next += interval, and its next
+//      tick joins the earliest;
+//   3. the compare goes to the earliest next step (or MAXL_STEP_MIN_TICKS
+//      from the count, if that is later: arm());
 //   4. each due channel: STEP low.
 //
-// A pulse is high from its channel's step 2 to its step 4, at least the ~50
-// cycles of steps 2 (the rest), 3 and 4 (3 µs at 16 MHz, over the 2 µs that
+// A pulse is high from its channel's step 2 to its step 4, at least the ~40
+// cycles of steps 2 (the rest), 3 and 4 (2.5 µs at 16 MHz, over the 2 µs that
 // common drivers need), so it needs no wait; DIR cannot change inside a run.
-// ~190 cycles for one channel, ~270 for two due at once, where the C handler
+// ~170 cycles for one channel, ~240 for two due at once, where the C handler
 // takes ~280 for one.
 //
 // Everything else (a run's last step, nothing due, the direction) restores
@@ -270,34 +272,30 @@ static_assert(MAXL_STEP_CHANNELS <= 4, "the step vector's fast path has four cha
 // Z = channel i
 #define MAXL_STEP_ISR_CHANNEL(i) "lds  r30, %[ch]+2*" #i "\n\tlds  r31, %[ch]+2*" #i "+1\n\t"
 
-// 1. channel i due (bit i of r22), or the C handler
+// 1. channel i due (bit i of r22), or the C handler; if not due, r20:r21 =
+// min(r20:r21, tick − count)
 #define MAXL_STEP_ISR_DUE(i)                                                                    \
   "cpi  r23, " #i "+1\n\tbrlo 1f\n\t" MAXL_STEP_ISR_CHANNEL(i)                                  \
   "ldd  r24, Z+8\n\tandi r24, 0x7F\n\tbreq 1f\n\t"                                              \
-  "movw r20, r18\n\tldd  r26, Z+2\n\tsub  r20, r26\n\tldd  r26, Z+3\n\tsbc  r21, r26\n\t"       \
-  "brmi 1f\n\t"                                                                                 \
-  "cpi  r24, 2\n\tbrsh 2f\n\trjmp 9f\n\t2:\n\t"                                                 \
-  "ori  r22, 1<<" #i "\n\t"                                                                     \
+  "ldd  r26, Z+2\n\tldd  r27, Z+3\n\tsub  r26, r18\n\tsbc  r27, r19\n\t"                        \
+  "breq 3f\n\tbrpl 4f\n\t"                                                                      \
+  "3:\n\tcpi  r24, 2\n\tbrsh 2f\n\trjmp 9f\n\t2:\n\t"                                             \
+  "ori  r22, 1<<" #i "\n\trjmp 1f\n\t"                                                          \
+  "4:\n\tcp   r26, r20\n\tcpc  r27, r21\n\tbrge 1f\n\tmovw r20, r26\n\t"                           \
   "1:\n\t"
 
-// 2. STEP high, count − 1 (BACKWARD, bit 7, stays), next += interval byte by byte
+// 2. STEP high, count − 1 (BACKWARD, bit 7, stays), next += interval byte by
+// byte, r20:r21 = min(r20:r21, new tick − count)
 #define MAXL_STEP_ISR_STEP(i)                                                                   \
   "sbrs r22, " #i "\n\trjmp 4f\n\t" MAXL_STEP_ISR_CHANNEL(i)                                    \
   "ldd  r26, Z+9\n\tldd  r27, Z+10\n\tldd  r25, Z+11\n\tld   r24, X\n\tor   r24, r25\n\tst   X, r24\n\t" \
   "ldd  r24, Z+8\n\tdec  r24\n\tstd  Z+8, r24\n\t"                                              \
   "ldd  r24, Z+0\n\tldd  r25, Z+4\n\tadd  r24, r25\n\tstd  Z+0, r24\n\t"                        \
   "ldd  r24, Z+1\n\tldd  r25, Z+5\n\tadc  r24, r25\n\tstd  Z+1, r24\n\t"                        \
-  "ldd  r24, Z+2\n\tldd  r25, Z+6\n\tadc  r24, r25\n\tstd  Z+2, r24\n\t"                        \
-  "ldd  r24, Z+3\n\tldd  r25, Z+7\n\tadc  r24, r25\n\tstd  Z+3, r24\n\t"                        \
+  "ldd  r26, Z+2\n\tldd  r25, Z+6\n\tadc  r26, r25\n\tstd  Z+2, r26\n\t"                        \
+  "ldd  r27, Z+3\n\tldd  r25, Z+7\n\tadc  r27, r25\n\tstd  Z+3, r27\n\t"                        \
+  "sub  r26, r18\n\tsbc  r27, r19\n\tcp   r26, r20\n\tcpc  r27, r21\n\tbrge 4f\n\tmovw r20, r26\n\t" \
   "4:\n\t"
-
-// 3. r20:r21 = the least tick − count over the channels with a run (signed)
-#define MAXL_STEP_ISR_EARLIEST(i)                                                               \
-  "cpi  r23, " #i "+1\n\tbrlo 5f\n\t" MAXL_STEP_ISR_CHANNEL(i)                                  \
-  "ldd  r24, Z+8\n\tandi r24, 0x7F\n\tbreq 5f\n\t"                                              \
-  "ldd  r24, Z+2\n\tldd  r25, Z+3\n\tsub  r24, r18\n\tsbc  r25, r19\n\t"                        \
-  "cp   r24, r20\n\tcpc  r25, r21\n\tbrge 5f\n\tmovw r20, r24\n\t"                              \
-  "5:\n\t"
 
 // 4. STEP low
 #define MAXL_STEP_ISR_LOW(i)                                                                    \
@@ -332,6 +330,8 @@ ISR(TIMER1_COMPB_vect, ISR_NAKED) {
       "lds  r19, %[tcnth]\n\t"
       "clr  r22\n\t"
       "lds  r23, %[channels]\n\t"
+      "ldi  r20, 0xFF\n\t"
+      "ldi  r21, 0x7F\n\t"
       MAXL_STEP_ISR_EACH(MAXL_STEP_ISR_DUE)
       "tst  r22\n\t"
       "brne 8f\n\t"
@@ -341,9 +341,6 @@ ISR(TIMER1_COMPB_vect, ISR_NAKED) {
       "jmp  __vector_maxl_step_slow\n\t"
       "8:\n\t"
       MAXL_STEP_ISR_EACH(MAXL_STEP_ISR_STEP)
-      "ldi  r20, 0xFF\n\t"
-      "ldi  r21, 0x7F\n\t"
-      MAXL_STEP_ISR_EACH(MAXL_STEP_ISR_EARLIEST)
       // compare = count at entry + the least difference, or the count now + MAXL_STEP_MIN_TICKS if that is later
       "add  r20, r18\n\t"
       "adc  r21, r19\n\t"

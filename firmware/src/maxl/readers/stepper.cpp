@@ -110,6 +110,7 @@ void MAXL_Stepper::stopTimed() {
   hal::unlockInterrupts(sreg);
   generator_.setSteps((int32_t)((uint32_t)generator_.steps() - (uint32_t)(int32_t)dropped));
   synced_ = false;
+  MAXL_StepPlanner::changed();
 }
 
 void MAXL_Stepper::dropFrom(uint32_t from) {
