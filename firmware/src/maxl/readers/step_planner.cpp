@@ -53,84 +53,40 @@ __attribute__((noinline)) void MAXL_StepPlanner::restart(MAXL_Device& device, MA
   uint32_t now = device.now();
   bool planning = false;  // some stepper follows the grid: planned_ holds
   for (uint8_t i = 0; i < n; i++) planning |= steppers[i]->synced_;
-  if (planning && !stale) {
-    uint32_t from = motion.haltPending() && timeBefore(now, motion.haltAt()) ? motion.haltAt() : now;
-    if (timeBefore(from, planned_)) {
-      for (uint8_t i = 0; i < n; i++) steppers[i]->dropFrom(from);
-      planned_ = from;
-    }
-  } else {
-    planned_ = now;
-  }
-  for (uint8_t i = 0; i < n; i++) motion.lookFrom(steppers[i]->look_, steppers[i]->slot());
+  uint32_t from = motion.haltPending() && timeBefore(now, motion.haltAt()) ? motion.haltAt() : now;
+  bool drop = planning && !stale && timeBefore(from, planned_);
+  if (drop || !planning || stale) planned_ = drop ? from : now;
+  for (uint8_t i = 0; i < n; i++) steppers[i]->gridRestart(motion, from, drop);
   const Lookahead& first = steppers[0]->look_;  // every slot's walk has the same times
   if (first.state != Lookahead::REST && timeBefore(planned_, first.chunkStart)) planned_ = first.chunkStart;
-  for (uint8_t i = 0; i < n; i++) {
-    MAXL_Stepper& s = *steppers[i];
-    uint32_t until;
-    motion.lookSpan(s.look_, s.slot(), planned_, until);  // crosses what lies before planned_
-    s.plannedUnits_ = motion.lookAt(s.look_, s.slot(), planned_);
-    s.synced_ = true;
-  }
-}
-
-// Not certain past planned_ and at rest (no timing ahead): the position holds
-// at least until the device clock, so the plan catches up to it.
-void MAXL_StepPlanner::catchUpAtRest(MAXL_Device& device, MAXL_Stepper* const* steppers, uint8_t n, uint32_t now) {
-  const Motion& motion = device.motion();
-  for (uint8_t i = 0; i < n; i++) {
-    MAXL_Stepper& s = *steppers[i];
-    int32_t here = motion.lookAt(s.look_, s.slot(), now);
-    s.schedule(planned_, now, here, here, 0, now);
-    s.plannedUnits_ = here;
-  }
-  planned_ = now;
+  for (uint8_t i = 0; i < n; i++) steppers[i]->gridJoin(motion, planned_);
 }
 
 // The end of the next window from planned_ (the piece ends at `until`) and
-// every stepper's position there (p1). A window holds at most
-// MAXL_STEP_WINDOW_STEPS steps of any stepper (a run's count is 7 bits, and a
-// burst may need the rest): where one would hold more, the lookaheads go back
-// (copies) and the window is halved.
-uint32_t MAXL_StepPlanner::windowEnd(MAXL_Device& device, MAXL_Stepper* const* steppers, uint8_t n, uint32_t until,
+// every stepper's position there (p1). The window is the shortest any
+// stepper needs for its bend (gridWindow), halved while any stepper would get
+// more than MAXL_STEP_WINDOW_STEPS steps in it (a run's count is 7 bits, and
+// a burst may need the rest).
+uint32_t MAXL_StepPlanner::windowEnd(const Motion& motion, MAXL_Stepper* const* steppers, uint8_t n, uint32_t until,
                                      int32_t* p1) {
-  const Motion& motion = device.motion();
-  if (steppers[0]->look_.state == Lookahead::REST) {
-    for (uint8_t i = 0; i < n; i++) p1[i] = motion.lookAt(steppers[i]->look_, steppers[i]->slot(), until);
-    return until;
-  }
-  uint16_t w = MAXL_STEP_WINDOW_MAX_US;
-  // what lookAt() moves on: the chunk start and the track's P and B
-  struct Saved {
-    uint32_t chunkStart;
-    int32_t p, b;
-  } before[MAXL_STEP_CHANNELS];
-  for (uint8_t i = 0; i < n; i++) {
-    const Lookahead& a = steppers[i]->look_;
-    uint16_t wi = steppers[i]->windowFor(motion.lookCurvature(a));
-    if (wi < w) w = wi;
-    before[i].chunkStart = a.chunkStart;
-    before[i].p = a.track.P;
-    before[i].b = a.track.B;
-  }
-  for (;;) {
-    uint32_t t1 = (planned_ & ~(uint32_t)(w - 1)) + w;  // the next multiple of w
-    if (timeBefore(until, t1)) t1 = until;
-    bool tooMany = false;
+  uint32_t t1 = until;
+  if (steppers[0]->look_.state != Lookahead::REST) {
+    uint16_t w = MAXL_STEP_WINDOW_MAX_US;
     for (uint8_t i = 0; i < n; i++) {
-      MAXL_Stepper& s = *steppers[i];
-      p1[i] = motion.lookAt(s.look_, s.slot(), t1);
-      tooMany |= s.tooManySteps((int32_t)((uint32_t)p1[i] - (uint32_t)s.plannedUnits_));
+      uint16_t wi = steppers[i]->gridWindow(motion);
+      if (wi < w) w = wi;
     }
-    if (w <= MAXL_STEP_WINDOW_MIN_US || !tooMany) return t1;
-    for (uint8_t i = 0; i < n; i++) {
-      Lookahead& a = steppers[i]->look_;
-      a.chunkStart = before[i].chunkStart;
-      a.track.P = before[i].p;
-      a.track.B = before[i].b;
+    for (;;) {
+      t1 = (planned_ & ~(uint32_t)(w - 1)) + w;  // the next multiple of w
+      if (timeBefore(until, t1)) t1 = until;
+      bool tooMany = false;
+      for (uint8_t i = 0; i < n; i++) tooMany |= steppers[i]->gridTooMany(t1);
+      if (!tooMany || w <= MAXL_STEP_WINDOW_MIN_US) break;
+      w >>= 1;
     }
-    w >>= 1;
   }
+  for (uint8_t i = 0; i < n; i++) p1[i] = steppers[i]->gridEnd(motion, t1);
+  return t1;
 }
 
 // Most loops: nothing changed, and the plan is far enough ahead or the
@@ -175,17 +131,19 @@ __attribute__((noinline)) void MAXL_StepPlanner::planMore(MAXL_Device& device, M
       else if (i == 0 || timeBefore(u, until))
         until = u;
     }
-    if (!certain) {
-      if (steppers[0]->look_.state == Lookahead::REST && timeBefore(planned_, now)) catchUpAtRest(device, steppers, n, now);
-      return;
+    uint32_t t1;
+    if (certain) {
+      t1 = windowEnd(motion, steppers, n, until, p1);
+    } else {
+      // Not certain past planned_. At rest (no timing ahead) the position
+      // holds at least until the device clock: catch up to it if needed.
+      if (steppers[0]->look_.state != Lookahead::REST || !timeBefore(planned_, now)) return;
+      t1 = now;
+      for (uint8_t i = 0; i < n; i++) p1[i] = steppers[i]->gridEnd(motion, now);
     }
-    uint32_t t1 = windowEnd(device, steppers, n, until, p1);
-    for (uint8_t i = 0; i < n; i++) {
-      MAXL_Stepper& s = *steppers[i];
-      s.schedule(planned_, t1, s.plannedUnits_, p1[i], motion.lookCurvature(s.look_), now);
-      s.plannedUnits_ = p1[i];
-    }
+    for (uint8_t i = 0; i < n; i++) steppers[i]->gridPlan(motion, planned_, t1, p1[i], now);
     planned_ = t1;
+    if (!certain) return;
   }
 }
 

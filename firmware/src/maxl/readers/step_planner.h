@@ -33,6 +33,9 @@
 
 class MAXL_Device;
 class MAXL_Stepper;
+namespace maxl_fw {
+class Motion;
+}
 
 class MAXL_StepPlanner {
  public:
@@ -48,8 +51,8 @@ class MAXL_StepPlanner {
   // The steppers taking part now (subscribed, position known); returns how many.
   static uint8_t active(MAXL_Stepper** out);
   static void restart(MAXL_Device& device, MAXL_Stepper* const* steppers, uint8_t n, bool stale);
-  static void catchUpAtRest(MAXL_Device& device, MAXL_Stepper* const* steppers, uint8_t n, uint32_t now);
-  static uint32_t windowEnd(MAXL_Device& device, MAXL_Stepper* const* steppers, uint8_t n, uint32_t until, int32_t* p1);
+  static uint32_t windowEnd(const maxl_fw::Motion& motion, MAXL_Stepper* const* steppers, uint8_t n, uint32_t until,
+                            int32_t* p1);
 
   static MAXL_Stepper* members_[MAXL_STEP_CHANNELS];
   static uint8_t count_;

@@ -108,7 +108,7 @@ void MAXL_Stepper::stopTimed() {
   int16_t dropped = generator_.channel().clear();
   StepTimer::kick();
   hal::unlockInterrupts(sreg);
-  generator_.setSteps((int32_t)((uint32_t)generator_.steps() - (uint32_t)(int32_t)dropped));
+  tookBack(dropped);
   synced_ = false;
   MAXL_StepPlanner::changed();
 }
@@ -117,7 +117,51 @@ void MAXL_Stepper::dropFrom(uint32_t from) {
   uint8_t sreg = hal::lockInterrupts();
   int16_t dropped = generator_.channel().dropFrom(StepTimer::ticksAt(from));
   hal::unlockInterrupts(sreg);
+  tookBack(dropped);
+}
+
+// Steps taken back from the ring were counted when planned: the count goes back.
+__attribute__((noinline)) void MAXL_Stepper::tookBack(int16_t dropped) {
   generator_.setSteps((int32_t)((uint32_t)generator_.steps() - (uint32_t)(int32_t)dropped));
+}
+
+// ---- this stepper's part of the planner's grid
+
+__attribute__((noinline)) void MAXL_Stepper::gridRestart(const Motion& motion, uint32_t from, bool drop) {
+  if (drop) dropFrom(from);
+  motion.lookFrom(look_, slot());
+}
+
+__attribute__((noinline)) void MAXL_Stepper::gridJoin(const Motion& motion, uint32_t t) {
+  uint32_t until;
+  motion.lookSpan(look_, slot(), t, until);  // crosses what lies before t
+  plannedUnits_ = motion.lookAt(look_, slot(), t);
+  synced_ = true;
+}
+
+__attribute__((noinline)) uint16_t MAXL_Stepper::gridWindow(const Motion& motion) const {
+  return windowFor(motion.lookCurvature(look_));
+}
+
+// Where the slot would be at t (RUN or BRAKE), without moving the walk: the
+// track's quadratic on a copy, chunk by chunk (fixed_point.h). Only to size a
+// window, so a segment's end is not snapped to its p1 here.
+__attribute__((noinline)) bool MAXL_Stepper::gridTooMany(uint32_t t) const {
+  FixedTrack k = look_.track;
+  uint32_t x = t - look_.chunkStart;
+  for (; x >= 65536ul; x -= 65536ul) k.nextChunk();
+  int32_t w = (int32_t)((uint32_t)k.B + (uint32_t)mulhi16Cold(k.C, (uint16_t)x));
+  int32_t p = (int32_t)((uint32_t)k.P + (uint32_t)mulhi16Cold(w, (uint16_t)x));
+  return tooManySteps((int32_t)((uint32_t)p - (uint32_t)plannedUnits_));
+}
+
+__attribute__((noinline)) int32_t MAXL_Stepper::gridEnd(const Motion& motion, uint32_t t1) {
+  return motion.lookAt(look_, slot(), t1);
+}
+
+__attribute__((noinline)) void MAXL_Stepper::gridPlan(const Motion& motion, uint32_t t0, uint32_t t1, int32_t p1, uint32_t now) {
+  schedule(t0, t1, plannedUnits_, p1, motion.lookCurvature(look_), now);
+  plannedUnits_ = p1;
 }
 
 namespace {
@@ -125,7 +169,7 @@ namespace {
 // as two 32×16 multiplies, rounded up.
 int32_t bendUnits(int32_t c, uint16_t w) {
   if (!c) return 0;
-  uint32_t a = (uint32_t)(c < 0 ? -(int64_t)c : c);
+  uint32_t a = c < 0 ? (uint32_t)0 - (uint32_t)c : (uint32_t)c;  // |c|, 2^31 for INT32_MIN
   if (a > 0x7FFFFFFFul) a = 0x7FFFFFFFul;
   int32_t cw = mulhi16Cold((int32_t)a, w);           // |C|·W/2^16 (floor), < 2^31
   return (mulhi16Cold(cw, w) >> 2) + 1;              // |C|·W²/2^34, + 1 for the floors
@@ -149,7 +193,7 @@ constexpr uint8_t log2u(uint32_t x) { return x <= 1 ? 0 : (uint8_t)(1 + log2u(x 
 const uint8_t WINDOW_MAX_SHIFT = (uint8_t)(31 - 2 * log2u(MAXL_STEP_WINDOW_MAX_US));  // 9 for 2048 µs
 }  // namespace
 
-uint16_t MAXL_Stepper::windowFor(int32_t c) const {
+__attribute__((noinline)) uint16_t MAXL_Stepper::windowFor(int32_t c) const {
   uint32_t a = c < 0 ? (uint32_t)0 - (uint32_t)c : (uint32_t)c;
   uint32_t s = (uint32_t)generator_.unitsPerStep();
   uint32_t bound = s >= (0x80000000ul >> WINDOW_MAX_SHIFT) ? 0xFFFFFFFFul : s << WINDOW_MAX_SHIFT;

@@ -89,10 +89,25 @@ class MAXL_Stepper : public MAXL_TrackPositionLinear {
   bool synced_ : 1;  // look_ and plannedUnits_ follow the planner's grid
   maxl_fw::Lookahead look_;
   int32_t plannedUnits_;  // the position where the plan ends
+  // ---- this stepper's part of the planner's grid (step_planner.cpp)
+  // Starts the walk where Motion is, first taking back the steps planned
+  // from `from` on when `drop`.
+  void gridRestart(const maxl_fw::Motion& motion, uint32_t from, bool drop);
+  // Walks on to `t` (where the grid starts) and takes the position there.
+  void gridJoin(const maxl_fw::Motion& motion, uint32_t t);
+  // The longest window this stepper's slot allows for the bend (windowFor).
+  uint16_t gridWindow(const maxl_fw::Motion& motion) const;
+  // Whether a window ending at t would hold more than MAXL_STEP_WINDOW_STEPS steps.
+  bool gridTooMany(uint32_t t) const;
+  // The position at the window's end t1 (the walk moves on to it).
+  int32_t gridEnd(const maxl_fw::Motion& motion, uint32_t t1);
+  // The window [t0, t1] to p1 becomes step times.
+  void gridPlan(const maxl_fw::Motion& motion, uint32_t t0, uint32_t t1, int32_t p1, uint32_t now);
   // The steps of one window [t0, t1] from p0 to p1 on a piece of half acceleration c.
   void schedule(uint32_t t0, uint32_t t1, int32_t p0, int32_t p1, int32_t curvature, uint32_t now);
   // Takes back every planned step from device time `from` on (a HALT, a resync).
   void dropFrom(uint32_t from);
+  void tookBack(int16_t dropped);
   uint16_t windowFor(int32_t curvature) const;
   bool tooManySteps(int32_t delta) const;
   void stopTimed();
