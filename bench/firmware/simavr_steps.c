@@ -5,7 +5,7 @@
  * steps/mm) on a simulated 16 MHz ATmega328P and, over its simulated UART at
  * 250 000 baud, opens a session, subscribes the stepper and queues a straight
  * move: accelerate at A to v = rate/80 mm/s, cruise CRUISE_MS ms in 6
- * segments, decelerate. All frames arrive before the move starts (the link is
+ * segments (CRUISE_SEGMENTS, for a device whose queue holds fewer), decelerate. All frames arrive before the move starts (the link is
  * quiet during it, except for the device's own STATUS reports).
  *
  * Every rising edge of STEP (PD2) is stamped with the simulator's cycle count,
@@ -51,7 +51,7 @@
 #define UNITS_PER_MM 65536.0
 #define F_CPU 16000000.0
 #define MAX_EDGES 400000
-#define CRUISE_SEGMENTS 6  /* 8 segments in all: the Uno queue holds 10 */
+#define CRUISE_SEGMENTS 6  /* at most: 8 segments in all, the Uno queue holds 10 (CRUISE_SEGMENTS=N in the environment for fewer) */
 
 static avr_t *avr;
 #define MAX_STEPPERS 3
@@ -252,12 +252,14 @@ int main(int argc, char **argv) {
   /* the move: v = rate / 80 mm/s */
   double v = rate / STEPS_PER_MM;
   double tAcc = v / accel, dAcc = v * v / (2 * accel);
-  double cruiseLen = v * cruiseMs * 1e-3 / CRUISE_SEGMENTS;
+  int cruiseSegments = getenv("CRUISE_SEGMENTS") ? atoi(getenv("CRUISE_SEGMENTS")) : CRUISE_SEGMENTS;
+  if (cruiseSegments < 1 || cruiseSegments > CRUISE_SEGMENTS) { fprintf(stderr, "CRUISE_SEGMENTS must be 1..%d\n", CRUISE_SEGMENTS); return 2; }
+  double cruiseLen = v * cruiseMs * 1e-3 / cruiseSegments;
   double start = deviceMicros(avr->cycle) + 60000.0; /* frames take ~15 ms at 250 kbaud */
   double at = 0;
   double sec[3];
   sec[0] = tAcc; addSegment(dAcc, 0x01, 1, sec, accel, &at, &start);
-  for (int i = 0; i < CRUISE_SEGMENTS; i++) { sec[0] = cruiseLen / v; addSegment(cruiseLen, 0x02, 1, sec, accel, &at, &start); }
+  for (int i = 0; i < cruiseSegments; i++) { sec[0] = cruiseLen / v; addSegment(cruiseLen, 0x02, 1, sec, accel, &at, &start); }
   sec[0] = tAcc; addSegment(dAcc, 0x03, 1, sec, accel, &at, &start);
   double end = start;
   if (getenv("BENCH_DEBUG")) for (int i = 0; i < segCount; i++) fprintf(stderr, "segment %d starts at %.0f\n", i, seg[i].start);
