@@ -17,6 +17,16 @@
 //                         (BlotPlotter's CoreXY pair), each at the rate
 //                         (StepRate and StepRateTwo are built with the Stepper
 //                         and BlotPlotter examples' build_flags.txt: firmware/README.md)
+//   avrStepRateTwoSteppers30DegHz  the same pair on a CoreXY line at 30° to x:
+//                         motor a at the rate, motor b at 0.268 of it, each
+//                         checked against its own step period
+//   avrStepRateThreeSteppersHz  three steppers (StepRateThree: the CncShield
+//                         example's x, y, z and its build_flags.txt), each at
+//                         the rate, every step of all three checked (6 segments:
+//                         its queue holds 6)
+//   examples              { Name: { flashFree, ramFree } }: bytes of the Uno's
+//                         32 256 of flash and 2 048 of static RAM (.data + .bss)
+//                         each firmware example leaves free
 //   hostInstructionsPerEval  the same evaluation on the host (callgrind)
 //   bytesPerLinearSegment merged from bench/segment-bytes.ts (the TS encoder)
 //                         when that file exists
@@ -47,7 +57,7 @@ const log = (...a) => console.log('[bench firmware]', ...a);
 const clean = (s) => s.replace(/\x1b\[[0-9;]*m/g, '');
 
 // ---- builds
-for (const sketch of ['EvalCycles', 'StepRate', 'StepRateTwo']) {
+for (const sketch of ['EvalCycles', 'StepRate', 'StepRateTwo', 'StepRateThree']) {
   must('bash', ['scripts/firmware-avr-sketch.sh', `firmware/bench/${sketch}`, out], `AVR build of ${sketch}`);
 }
 const harness = path.join(out, 'simavr_steps');
@@ -99,6 +109,25 @@ function searchRate(label, elf, env) {
 }
 const { rate: lo, best } = searchRate('one stepper', path.join(out, 'StepRate/StepRate.elf'), {});
 const pair = searchRate('two steppers', path.join(out, 'StepRateTwo/StepRateTwo.elf'), { STEPPERS: '2' });
+const pair30 = searchRate('two steppers at 30°', path.join(out, 'StepRateTwo/StepRateTwo.elf'), { STEPPERS: '2', ANGLE_DEG: '30' });
+const three = searchRate('three steppers', path.join(out, 'StepRateThree/StepRateThree.elf'), { STEPPERS: '3', CRUISE_SEGMENTS: '4' });
+
+// ---- flash and RAM each example leaves free on the Uno (its build_flags.txt)
+function exampleSizes() {
+  const FLASH = 32256; // 32 KiB minus the 512-byte bootloader
+  const RAM = 2048;
+  const sizes = {};
+  const examplesOut = path.join(out, 'examples');
+  for (const name of readdirSync(path.join(root, 'firmware/examples')).sort()) {
+    must('bash', ['scripts/firmware-avr-sketch.sh', `firmware/examples/${name}`, examplesOut], `AVR build of ${name}`);
+    const line = must('avr-size', [path.join(examplesOut, name, `${name}.elf`)], `avr-size of ${name}`).trim().split('\n').pop();
+    const [text, data, bss] = line.trim().split(/\s+/).map(Number);
+    sizes[name] = { flashFree: FLASH - (text + data), ramFree: RAM - (data + bss) };
+    log(`${name}: ${sizes[name].flashFree} bytes of flash and ${sizes[name].ramFree} of RAM free`);
+  }
+  return sizes;
+}
+const examples = exampleSizes();
 
 // ---- host instructions per evaluation (callgrind)
 let hostInstructionsPerEval;
@@ -149,6 +178,11 @@ const result = {
   ...(best ? { avrStepRateMaxLagUs: best.maxLagUs, avrLoopCyclesMean: best.loopMeanCycles, avrLoopMaxUs: Number((best.loopMaxCycles / 16).toFixed(1)) } : {}),
   avrStepRateTwoSteppersHz: pair.rate,
   avrStepRateTwoSteppersDefinition: 'the same move on two steppers at once (StepRateTwo: STEP D2 and D3, both on the step timer, as BlotPlotter), each at the rate; every step of both checked',
+  avrStepRateTwoSteppers30DegHz: pair30.rate,
+  avrStepRateTwoSteppers30DegDefinition: 'the same pair on a CoreXY line at 30° to x: motor a (x + y) at the rate, motor b (x − y) at 0.268 of it; every step of both checked against its own period',
+  avrStepRateThreeSteppersHz: three.rate,
+  avrStepRateThreeSteppersDefinition: 'the same move on three steppers (StepRateThree: the CncShield example, STEP D2, D3, D4, 6 segments), each at the rate; every step of all three checked',
+  examples,
   ...(hostInstructionsPerEval !== undefined ? { hostInstructionsPerEval } : {}),
   ...(bytesPerLinearSegment !== undefined ? { bytesPerLinearSegment } : {}),
 };

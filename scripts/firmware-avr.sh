@@ -60,21 +60,36 @@ else
   status=1
 fi
 # The step vector's fast path (readers/step_timer.cpp) is AVR assembly, which
-# the host tests cannot run either: drive the Stepper example's device in
-# simavr with real frames (bench/firmware/simavr_steps.c, the step-rate
-# benchmark's harness) through a 10 kHz move and require every step, none
-# early and none later than one step period. This checks correctness, not
-# speed: the benchmark (npm run bench -- firmware) finds the highest rate.
-if bash "$root/scripts/firmware-avr-sketch.sh" "$root/firmware/bench/StepRate" "$out" &&
-  gcc -O2 -Wall -o "$out/simavr_steps" "$root/bench/firmware/simavr_steps.c" -lsimavr -lm; then
-  result="$(timeout 300 "$out/simavr_steps" "$out/StepRate/StepRate.elf" 10000 2>/dev/null | tail -n 1)"
+# the host tests cannot run either: drive benchmark sketches in simavr with
+# real frames (bench/firmware/simavr_steps.c, the step-rate benchmark's
+# harness) and require every step of every stepper, none early and none later
+# than one step period. This checks correctness, not speed: the benchmark
+# (npm run bench -- firmware) finds the highest rates.
+#   one stepper (the Stepper example's device), 10 kHz;
+#   two (BlotPlotter's CoreXY pair): the Blot preset's 120 mm/s along x (both
+#   motors at 9 600 Hz) and along a line at 30° (motor a at 13 115 Hz, b at 3 515);
+#   three (the CncShield example's x, y, z), 4 kHz each (50 mm/s at 80 steps/mm).
+timed_check() {  # label sketch rate [VAR=value ...]
+  local label="$1" sketch="$2" rate="$3"
+  shift 3
+  local result steps got expected missed nacks
+  result="$(env "$@" timeout 300 "$out/simavr_steps" "$out/$sketch/$sketch.elf" "$rate" 2>/dev/null | tail -n 1)"
   steps="$(sed -n 's/.*"steps":\([0-9]*\),"expected":\([0-9]*\),"missed":\([0-9]*\),.*"nacks":\([0-9]*\).*/\1 \2 \3 \4/p' <<<"$result")"
   read -r got expected missed nacks <<<"${steps:-x x x x}"
-  echo "AVR timed steps in simavr (10 kHz move): $got of $expected steps, $missed missed, $nacks nacks"
+  echo "AVR timed steps in simavr ($label): $got of $expected steps, $missed missed, $nacks nacks"
   if [ "$got" != "$expected" ] || [ "$missed" != 0 ] || [ "$nacks" != 0 ] || [ "$got" = 0 ]; then
-    echo "FAIL AVR timed stepping: $result"
+    echo "FAIL AVR timed stepping ($label): $result"
     status=1
   fi
+}
+if bash "$root/scripts/firmware-avr-sketch.sh" "$root/firmware/bench/StepRate" "$out" &&
+  bash "$root/scripts/firmware-avr-sketch.sh" "$root/firmware/bench/StepRateTwo" "$out" &&
+  bash "$root/scripts/firmware-avr-sketch.sh" "$root/firmware/bench/StepRateThree" "$out" &&
+  gcc -O2 -Wall -o "$out/simavr_steps" "$root/bench/firmware/simavr_steps.c" -lsimavr -lm; then
+  timed_check "one stepper, 10 kHz" StepRate 10000
+  timed_check "two steppers, 120 mm/s along x" StepRateTwo 9600 STEPPERS=2
+  timed_check "two steppers, 120 mm/s at 30°" StepRateTwo 13115 STEPPERS=2 ANGLE_DEG=30
+  timed_check "three steppers, 4 kHz each" StepRateThree 4000 STEPPERS=3 CRUISE_SEGMENTS=4
 else
   status=1
 fi

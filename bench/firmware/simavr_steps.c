@@ -5,7 +5,7 @@
  * steps/mm) on a simulated 16 MHz ATmega328P and, over its simulated UART at
  * 250 000 baud, opens a session, subscribes the stepper and queues a straight
  * move: accelerate at A to v = rate/80 mm/s, cruise CRUISE_MS ms in 6
- * segments, decelerate. All frames arrive before the move starts (the link is
+ * segments (CRUISE_SEGMENTS, for a device whose queue holds fewer), decelerate. All frames arrive before the move starts (the link is
  * quiet during it, except for the device's own STATUS reports).
  *
  * Every rising edge of STEP (PD2) is stamped with the simulator's cycle count,
@@ -16,12 +16,17 @@
  * MISSED when it comes later than one step period (1 / step rate at that
  * moment) after its ideal time, earlier than 2 µs before it, or not at all.
  *
- * With STEPPERS=2 in the environment the sketch has two steppers (STEP D2/DIR D5
- * and STEP D3/DIR D6, as BlotPlotter's CoreXY pair): both are subscribed (slots 0
- * and 1) to the same move, so each steps at RATE_HZ, and both are checked.
+ * With STEPPERS=2 or 3 in the environment the sketch has that many steppers
+ * (STEP D2/DIR D5, STEP D3/DIR D6, STEP D4/DIR D7: BlotPlotter's CoreXY pair,
+ * the CncShield example's x, y, z), subscribed to slots 0, 1, 2 of the same
+ * move. By default each slot moves as far as the path, so every motor steps at
+ * RATE_HZ. With STEPPERS=2 and ANGLE_DEG=θ the move is a CoreXY line at θ to
+ * x: motor a = x + y, motor b = x − y, so b moves (cos θ − sin θ)/(cos θ + sin θ)
+ * as far as a (0.268 at 30°): a steps at RATE_HZ, b at its own lower rate,
+ * and each is checked against its own period.
  *
  * Prints one JSON line: {"rate":..,"steps":..,"expected":..,"missed":..,...}
- * (steps and missed summed over the steppers).
+ * (steps and missed summed over the steppers; "perStepper" has each one's).
  *
  * Debugging: BENCH_DEBUG=1 prints segment starts, loops over 150 µs and every
  * late step; BENCH_PROFILE=FILE samples the program counter during the move
@@ -46,11 +51,12 @@
 #define UNITS_PER_MM 65536.0
 #define F_CPU 16000000.0
 #define MAX_EDGES 400000
-#define CRUISE_SEGMENTS 6  /* 8 segments in all: the Uno queue holds 10 */
+#define CRUISE_SEGMENTS 6  /* at most: 8 segments in all, the Uno queue holds 10 (CRUISE_SEGMENTS=N in the environment for fewer) */
 
 static avr_t *avr;
-static uint64_t edges[2][MAX_EDGES];
-static int edgeCount[2] = {0, 0}, edgeOverflow = 0, dirChanges = 0, lastDir = -1;
+#define MAX_STEPPERS 3
+static uint64_t edges[MAX_STEPPERS][MAX_EDGES];
+static int edgeCount[MAX_STEPPERS] = {0, 0, 0}, edgeOverflow = 0, dirChanges = 0, lastDir = -1;
 static uint64_t calCycle = 0;
 static int calMicrosKnown = 0;
 static double calMicros = 0;
@@ -77,7 +83,7 @@ static void onUart(struct avr_irq_t *irq, uint32_t value, void *param) {
 }
 static void onStep(struct avr_irq_t *irq, uint32_t value, void *param) {
   (void)irq;
-  int m = param ? 1 : 0;
+  int m = (int)(intptr_t)param;
   if (!value) return;
   if (edgeCount[m] < MAX_EDGES) edges[m][edgeCount[m]++] = avr->cycle; else edgeOverflow = 1;
 }
@@ -151,7 +157,7 @@ static int putVarint(uint8_t *p, uint32_t v) { int n = 0; while (v >= 0x80) { p[
 /* ---------------------------------------------------------------- the move, as sent */
 typedef struct {
   float length;      /* as sent (f32) */
-  int32_t p0, p1;    /* units */
+  int32_t p0[MAX_STEPPERS], p1[MAX_STEPPERS];  /* units, per slot */
   uint8_t shape, phases;
   uint32_t d[3];
   float alpha;       /* as sent (f32) */
@@ -159,6 +165,8 @@ typedef struct {
 } Segment;
 static Segment seg[CRUISE_SEGMENTS + 2];
 static int segCount = 0;
+static int steppers = 1;
+static double scale[MAX_STEPPERS] = {1, 1, 1}; /* each slot's travel over the path's */
 
 static int phaseSign(const Segment *s, int k) { int kind = (s->shape >> (2 * k)) & 3; return kind == 1 ? 1 : kind == 3 ? -1 : 0; }
 static double duration(const Segment *s) { double t = 0; for (int k = 0; k < s->phases; k++) t += s->d[k]; return t; }
@@ -180,22 +188,24 @@ static void sigmaAt(const Segment *s, double tauUs, double *sigma, double *nu) {
   *sigma = sg;
   *nu = n;
 }
-/* position (units) and speed (mm/s) at device time t */
-static void stateAt(double t, double *pos, double *speed) {
+/* slot m's position (units) and speed (mm/s) at device time t */
+static void stateAt(int m, double t, double *pos, double *speed) {
   const Segment *s = &seg[0];
   for (int i = 0; i < segCount; i++) if (t >= seg[i].start) s = &seg[i];
   double sigma, nu;
   sigmaAt(s, t - s->start, &sigma, &nu);
-  *pos = s->p0 + (double)(s->p1 - s->p0) * sigma;
-  *speed = s->length * nu;
+  *pos = s->p0[m] + (double)(s->p1[m] - s->p0[m]) * sigma;
+  *speed = fabs((double)(s->p1[m] - s->p0[m])) / UNITS_PER_MM * nu;
 }
 
-static void addSegment(double length, int shape, int phases, const double *seconds, double accel, int32_t *at, double *start) {
+static void addSegment(double length, int shape, int phases, const double *seconds, double accel, double *at, double *start) {
   Segment *s = &seg[segCount++];
   s->length = (float)length;
-  s->p0 = *at;
-  s->p1 = *at + (int32_t)llround(length * UNITS_PER_MM);
-  *at = s->p1;
+  for (int m = 0; m < steppers; m++) {
+    s->p0[m] = (int32_t)llround(*at * scale[m] * UNITS_PER_MM);
+    s->p1[m] = (int32_t)llround((*at + length) * scale[m] * UNITS_PER_MM);
+  }
+  *at += length;
   s->shape = (uint8_t)shape;
   s->phases = (uint8_t)phases;
   for (int k = 0; k < phases; k++) s->d[k] = (uint32_t)llround(seconds[k] * 1e6);
@@ -220,9 +230,14 @@ int main(int argc, char **argv) {
   avr->log = 0;
   avr_load_firmware(avr, &fw);
   avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT), onUart, NULL);
-  int steppers = getenv("STEPPERS") && atoi(getenv("STEPPERS")) == 2 ? 2 : 1;
-  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('D'), 2), onStep, NULL);
-  if (steppers == 2) avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('D'), 3), onStep, (void *)1);
+  steppers = getenv("STEPPERS") ? atoi(getenv("STEPPERS")) : 1;
+  if (steppers < 1 || steppers > MAX_STEPPERS) { fprintf(stderr, "STEPPERS must be 1..%d\n", MAX_STEPPERS); return 2; }
+  if (getenv("ANGLE_DEG")) {
+    double th = atof(getenv("ANGLE_DEG")) * M_PI / 180.0;
+    if (steppers != 2 || cos(th) + sin(th) <= 0) { fprintf(stderr, "ANGLE_DEG needs STEPPERS=2 and a motor a moving forward\n"); return 2; }
+    scale[1] = (cos(th) - sin(th)) / (cos(th) + sin(th));
+  }
+  for (int m = 0; m < steppers; m++) avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('D'), 2 + m), onStep, (void *)(intptr_t)m);
   avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('D'), 5), onDir, NULL);
   avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 0), onCal, NULL);
   avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 1), onLoop, NULL);
@@ -237,12 +252,14 @@ int main(int argc, char **argv) {
   /* the move: v = rate / 80 mm/s */
   double v = rate / STEPS_PER_MM;
   double tAcc = v / accel, dAcc = v * v / (2 * accel);
-  double cruiseLen = v * cruiseMs * 1e-3 / CRUISE_SEGMENTS;
+  int cruiseSegments = getenv("CRUISE_SEGMENTS") ? atoi(getenv("CRUISE_SEGMENTS")) : CRUISE_SEGMENTS;
+  if (cruiseSegments < 1 || cruiseSegments > CRUISE_SEGMENTS) { fprintf(stderr, "CRUISE_SEGMENTS must be 1..%d\n", CRUISE_SEGMENTS); return 2; }
+  double cruiseLen = v * cruiseMs * 1e-3 / cruiseSegments;
   double start = deviceMicros(avr->cycle) + 60000.0; /* frames take ~15 ms at 250 kbaud */
-  int32_t at = 0;
+  double at = 0;
   double sec[3];
   sec[0] = tAcc; addSegment(dAcc, 0x01, 1, sec, accel, &at, &start);
-  for (int i = 0; i < CRUISE_SEGMENTS; i++) { sec[0] = cruiseLen / v; addSegment(cruiseLen, 0x02, 1, sec, accel, &at, &start); }
+  for (int i = 0; i < cruiseSegments; i++) { sec[0] = cruiseLen / v; addSegment(cruiseLen, 0x02, 1, sec, accel, &at, &start); }
   sec[0] = tAcc; addSegment(dAcc, 0x03, 1, sec, accel, &at, &start);
   double end = start;
   if (getenv("BENCH_DEBUG")) for (int i = 0; i < segCount; i++) fprintf(stderr, "segment %d starts at %.0f\n", i, seg[i].start);
@@ -253,7 +270,7 @@ int main(int argc, char **argv) {
   int n;
   p[0] = 1; sendPacket(0x01, p, 1);                               /* HELLO_REQUEST */
   for (int m = 0; m < steppers; m++) { p[0] = (uint8_t)m; p[1] = 1; p[2] = (uint8_t)m; sendPacket(0x04, p, 3); } /* SUBSCRIBE stepper m -> slot m */
-  int perGeometry = steppers == 2 ? 4 : 6;                        /* what fits a 60-byte payload */
+  int perGeometry = (60 - 4 - 4 * steppers) / (4 + 4 * steppers); /* what fits a 60-byte payload */
   for (int first = 0; first < segCount; first += perGeometry) {  /* GEOMETRY */
     int count = segCount - first < perGeometry ? segCount - first : perGeometry;
     n = 0;
@@ -261,7 +278,7 @@ int main(int argc, char **argv) {
     if (first == 0) for (int m = 0; m < steppers; m++) n += putU32(p + n, 0);
     for (int i = first; i < first + count; i++) {
       n += putF32(p + n, seg[i].length);
-      for (int m = 0; m < steppers; m++) n += putU32(p + n, (uint32_t)seg[i].p1);
+      for (int m = 0; m < steppers; m++) n += putU32(p + n, (uint32_t)seg[i].p1[m]);
     }
     sendPacket(0x05, p, n);
   }
@@ -315,20 +332,26 @@ int main(int argc, char **argv) {
     } }
 
   /* compare every step with its ideal time */
-  long expected = (long)floor((double)at / (UNITS_PER_MM / STEPS_PER_MM) + 0.5);
   double stepUnits = UNITS_PER_MM / STEPS_PER_MM;
+  long expectedAll = 0;
+  int perMissed[MAX_STEPPERS] = {0, 0, 0};
+  long perExpected[MAX_STEPPERS] = {0, 0, 0};
   int missed = 0, early = 0, late = 0;
   double maxLag = -1e9, minLag = 1e9, maxLagCruise = -1e9, worstRatio = 0;
   double cruiseStart = seg[1].start, cruiseEnd = seg[segCount - 1].start;
   int extra = 0, totalEdges = 0;
   for (int m = 0; m < steppers; m++) {
+  long expected = (long)floor((double)seg[segCount - 1].p1[m] / stepUnits + 0.5);
+  int missedBefore = missed + extra;
+  perExpected[m] = expected;
+  expectedAll += expected;
   totalEdges += edgeCount[m];
   if (edgeCount[m] > expected) extra += edgeCount[m] - (int)expected;
   for (long k = 1; k <= expected; k++) {
     double target = (k - 0.5) * stepUnits, lo = seg[0].start, hi = end;
-    for (int it = 0; it < 60; it++) { double mid = 0.5 * (lo + hi), pos, sp; stateAt(mid, &pos, &sp); if (pos < target) lo = mid; else hi = mid; }
+    for (int it = 0; it < 60; it++) { double mid = 0.5 * (lo + hi), pos, sp; stateAt(m, mid, &pos, &sp); if (pos < target) lo = mid; else hi = mid; }
     double ideal = hi, pos, speed;
-    stateAt(ideal, &pos, &speed);
+    stateAt(m, ideal, &pos, &speed);
     double period = speed > 1e-9 ? 1e6 / (speed * STEPS_PER_MM) : 1e12;
     if (k > edgeCount[m]) { missed++; continue; }
     double lag = deviceMicros(edges[m][k - 1]) - ideal;
@@ -339,13 +362,19 @@ int main(int argc, char **argv) {
     if (lag > period) { late++; missed++; if (getenv("BENCH_DEBUG")) fprintf(stderr, "late: stepper %d step %ld ideal %.1f lag %.1f\n", m, k, ideal, lag); }
     else if (lag < -2.0) { early++; missed++; }
   }
+  perMissed[m] = missed + extra - missedBefore;
   }
+  char perText[256];
+  int perLen = 0;
+  for (int m = 0; m < steppers; m++)
+    perLen += snprintf(perText + perLen, sizeof perText - perLen, "%s{\"rateHz\":%.0f,\"steps\":%d,\"expected\":%ld,\"missed\":%d}",
+                       m ? "," : "", rate * fabs(scale[m]), edgeCount[m], perExpected[m], perMissed[m]);
   printf("{\"rate\":%.0f,\"speedMmS\":%.3f,\"accelMmS2\":%.0f,\"steps\":%d,\"expected\":%ld,\"missed\":%d,\"late\":%d,\"early\":%d,"
          "\"maxLagUs\":%.2f,\"minLagUs\":%.2f,\"maxLagCruiseUs\":%.2f,\"worstLagOverPeriod\":%.3f,\"dirChanges\":%d,"
          "\"acks\":%d,\"nacks\":%d,\"statuses\":%d,\"edgeOverflow\":%d,"
-         "\"loopMeanCycles\":%.1f,\"loopMaxCycles\":%llu,\"loopHistogramUs\":{\"<25\":%llu,\"<30\":%llu,\"<40\":%llu,\"<50\":%llu,\"<100\":%llu,\"<200\":%llu,\"<500\":%llu,\">=500\":%llu}}\n",
-         rate, v, accel, totalEdges, expected * steppers, missed + extra, late, early,
-         maxLag, minLag, maxLagCruise, worstRatio, dirChanges, acks, nacks, statuses, edgeOverflow,
+         "\"perStepper\":[%s],\"loopMeanCycles\":%.1f,\"loopMaxCycles\":%llu,\"loopHistogramUs\":{\"<25\":%llu,\"<30\":%llu,\"<40\":%llu,\"<50\":%llu,\"<100\":%llu,\"<200\":%llu,\"<500\":%llu,\">=500\":%llu}}\n",
+         rate, v, accel, totalEdges, expectedAll, missed + extra, late, early,
+         maxLag, minLag, maxLagCruise, worstRatio, dirChanges, acks, nacks, statuses, edgeOverflow, perText,
          loopCount ? (double)loopCycles / loopCount : 0.0, (unsigned long long)loopMax,
          (unsigned long long)loopHist[0], (unsigned long long)loopHist[1], (unsigned long long)loopHist[2], (unsigned long long)loopHist[3],
          (unsigned long long)loopHist[4], (unsigned long long)loopHist[5], (unsigned long long)loopHist[6], (unsigned long long)loopHist[7]);

@@ -5,7 +5,7 @@
  * disk loader from './device/nodeWasmLoader.ts'.
  */
 export { createSimulatedMachine, type SimulatedMachine, type SimulatedMachineOptions } from './machine.ts';
-export { PRESETS, lightPainter, blotPlotter, accelRig, type MachinePreset, type SimulatedDeviceSpec, type PresetReader } from './presets/index.ts';
+export { PRESETS, lightPainter, blotPlotter, accelRig, cncShield, type MachinePreset, type SimulatedDeviceSpec, type PresetReader } from './presets/index.ts';
 export { fetchWasmLoader, cachedLoader, type WasmLoader } from './device/wasmLoader.ts';
 export { SimulatedLink, type DevicePort, type LinkReport } from './link/simulatedLink.ts';
 export { USB_FULL_SPEED_LINK, UNO_UART_LINK, resolveLinkConfig, type LinkConfig, type LinkDirectionConfig, type LinkOverrides } from './link/linkConfig.ts';

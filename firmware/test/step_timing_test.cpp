@@ -645,3 +645,91 @@ TEST(TimedStepper, NewSessionDropsThePlan) {
   EXPECT_EQ(rig.stepper.generator().channel().pending(), 0);
   EXPECT_FALSE(host::stepTimerArmed());
 }
+
+// ---------------------------------------------------------------- one grid, several steppers
+
+// Two steppers on one device, on slots 0 and 1, planned on the device's one
+// window grid (step_planner.h) and stepped from one interrupt: a CoreXY line
+// at 30° to x at 300 mm/s (motor a = x + y at 1.366·v, motor b = x − y at
+// 0.366·v: 32 800 and 8 780 steps/s), and back. Every step of each motor is
+// there, none early, none later than its own step period, and each within the
+// design's lag.
+TEST(TimedStepperGrid, TwoSteppersAtUnequalRatesEveryStepOnTime) {
+  MAXL_Stepper a("a", 2, 5, 80.0f);
+  MAXL_Stepper b("b", 3, 6, 80.0f);
+  ASSERT_TRUE(a.useStepTimer(true));
+  ASSERT_TRUE(b.useStepTimer(true));
+  host::setMicros(0);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}, {1, kind::POSITION, 1}});
+  uint32_t now = 0;
+  auto send = [&](const Bytes& frame) {
+    host::runStepTimer(now);
+    host::pushRx(frame.data(), frame.size());
+    while (host::rxPending()) {
+      now += 20;
+      host::runStepTimer(now);
+      h.loop();
+    }
+  };
+  const double th = 30.0 * M_PI / 180.0;
+  const double scale[2] = {std::cos(th) + std::sin(th), std::cos(th) - std::sin(th)};
+  // out 60 mm along the line and back: ramps at 10 000 mm/s², 300 mm/s cruise
+  const double v = 300, acc = 10000, ramp = v * v / (2 * acc);  // 4.5 mm
+  std::vector<std::pair<double, msg::TimingSegment>> segs = {
+      {ramp, trapezoid(ramp, 0, v, v, acc)},      {60 - 2 * ramp, trapezoid(60 - 2 * ramp, v, v, v, acc)},
+      {ramp, trapezoid(ramp, v, v, 0, acc)},      {-ramp, trapezoid(ramp, 0, v, v, acc)},
+      {-(60 - 2 * ramp), trapezoid(60 - 2 * ramp, v, v, v, acc)}, {-ramp, trapezoid(ramp, v, v, 0, acc)}};
+  uint32_t start = now + 20000;
+  Path path[2];
+  std::vector<GeometrySegment> geometry;
+  double along = 0, t = start;
+  for (const auto& s : segs) {
+    GeometrySegment g;
+    g.length = (float)std::fabs(s.first);
+    for (int m = 0; m < 2; m++) {
+      path[m].pieces.push_back({s.second, t, (double)mm(along * scale[m]), (double)mm((along + s.first) * scale[m])});
+      g.p1.push_back(mm((along + s.first) * scale[m]));
+    }
+    geometry.push_back(g);
+    along += s.first;
+    t += durationOf(s.second);
+  }
+  std::vector<int32_t> origin = {0, 0};
+  send(h.author.geometry(0, &origin, std::vector<GeometrySegment>(geometry.begin(), geometry.begin() + 4), 2));
+  send(h.author.geometry(4, nullptr, std::vector<GeometrySegment>(geometry.begin() + 4, geometry.end()), 2));
+  std::vector<msg::TimingSegment> timing;
+  for (const auto& s : segs) timing.push_back(s.second);
+  send(h.author.timing(0, 10000.0f, &start, std::vector<msg::TimingSegment>(timing.begin(), timing.begin() + 4)));
+  send(h.author.timing(4, 10000.0f, nullptr, std::vector<msg::TimingSegment>(timing.begin() + 4, timing.end())));
+  host::clearPinLog();
+  uint32_t end = (uint32_t)path[0].end() + 5000;
+  while (timeBefore(now, end)) {
+    now += 50;
+    host::runStepTimer(now);
+    h.loop();
+  }
+  const uint8_t stepPins[2] = {2, 3}, dirPins[2] = {5, 6};
+  for (int m = 0; m < 2; m++) {
+    std::vector<Edge> edges = stepEdges(stepPins[m], dirPins[m]);
+    // out: steps up to the far end, then back down to 0
+    int32_t far = stepOf(mm(60 * scale[m]));
+    std::vector<Edge> out(edges.begin(), edges.begin() + std::min<size_t>(edges.size(), (size_t)far));
+    Path outPath = path[m], backPath = path[m];
+    outPath.pieces.resize(3);
+    backPath.pieces.erase(backPath.pieces.begin(), backPath.pieces.begin() + 3);
+    Verdict vo = judge(outPath, out, S80, 0, far, SLACK);
+    EXPECT_EQ(vo.got, far) << "motor " << m;
+    EXPECT_EQ(vo.early, 0) << "motor " << m;
+    EXPECT_EQ(vo.late, 0) << "motor " << m << " max lag " << vo.maxLagUs;
+    EXPECT_EQ(vo.tooLaggy, 0) << "motor " << m << " max lag " << vo.maxLagUs;
+    std::vector<Edge> back(edges.begin() + std::min<size_t>(edges.size(), (size_t)far), edges.end());
+    Verdict vb = judge(backPath, back, S80, far, -far, SLACK);
+    EXPECT_EQ(vb.got, far) << "motor " << m;
+    EXPECT_EQ(vb.early, 0) << "motor " << m;
+    EXPECT_EQ(vb.late, 0) << "motor " << m << " max lag " << vb.maxLagUs;
+    EXPECT_EQ(vb.tooLaggy, 0) << "motor " << m << " max lag " << vb.maxLagUs;
+  }
+  EXPECT_EQ(a.steps(), 0);
+  EXPECT_EQ(b.steps(), 0);
+}

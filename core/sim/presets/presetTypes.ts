@@ -40,7 +40,7 @@ export interface SimulatedDeviceSpec {
 }
 
 export interface MachinePreset {
-  /** Short id: "lightPainter", "blotPlotter", "accelRig". */
+  /** Short id: "lightPainter", "blotPlotter", "accelRig", "cncShield". */
   id: string;
   description: string;
   config: MaxlConfig;

@@ -138,6 +138,22 @@ __attribute__((noinline)) void burstRun(MAXL_StepWindow& out, uint8_t count, boo
 }  // namespace
 #endif
 
+namespace {
+// floor(d / s1) for d < 128·s1 (and s1 < 2^25, so that s1·2^6 fits): the
+// quotient's 7 bits by long division.
+uint8_t quotient7(uint32_t d, uint32_t s1) {
+  uint8_t q = 0;
+  uint32_t t = s1 << 6;
+  for (uint8_t bit = 0x40; bit; bit = (uint8_t)(bit >> 1), t >>= 1) {
+    if (d >= t) {
+      d -= t;
+      q = (uint8_t)(q | bit);
+    }
+  }
+  return q;
+}
+}  // namespace
+
 // Moves the count (and its thresholds) up while `units` is at or past the
 // next upper threshold (direction +1), or down while it is below the lower
 // one (−1), at most `max` steps; returns how many.
@@ -175,7 +191,9 @@ uint32_t MAXL_StepGenerator::stepToward(int32_t units, uint32_t max, int8_t dire
       n++;
       continue;
     }
-    uint32_t k = d / s1 + 1u;  // >= 5
+    // k = floor(d / s1) + 1 >= 5; in a window (under 128 steps) as 7 steps
+    // of long division instead of a 32-bit division (~200 cycles, not ~650)
+    uint32_t k = (s1 < (1ul << 25) && (d >> 7) < s1 ? quotient7(d, s1) : d / s1) + 1u;
     if (k > max - n) k = max - n;
     // in u32: a count past ±2^31 (a position the step size cannot count to)
     // wraps like the thresholds do, without undefined behaviour

@@ -167,7 +167,7 @@ void StepTimer::detach(StepChannel* channel) {
 }
 
 // The compare goes to the earliest next step of all channels (interrupts off).
-MAXL_STEP_ISR_INLINE void StepTimer::arm() {
+__attribute__((noinline)) void StepTimer::arm() {
   uint16_t now = hal::stepTimerNow();
   bool any = false;
   uint16_t earliest = 0;
@@ -217,23 +217,38 @@ void StepTimer::interrupt() { serviceAll(); }
 
 // The vector, in two parts.
 //
-// The fast path (assembly, 7 registers saved) is the common case at high
-// step rates: one channel on the timer, its step due, and not the last of
-// its run. It is exactly serviceAll() for that case: STEP high, the run moved
-// on (count − 1, next += interval), the compare set to the new step (or
-// MAXL_STEP_MIN_TICKS from now if that is later: arm()), STEP low. The
-// pulse is high for the ~60 cycles between the two stores (3.8 µs at 16 MHz,
-// over the 2 µs that common drivers need), so it needs no wait; DIR cannot
-// change inside a run. ~150 cycles in all, where the C handler takes ~280.
+// The fast path (assembly, 15 registers saved) is the common case at high
+// step rates: every channel whose step is due has more steps left in its
+// run. It is exactly serviceAll() for that case, for every channel on the
+// timer in one pass (GRBL's one interrupt for all axes):
 //
-// Everything else (several channels, a run's last step, nothing due, the
-// direction) restores every register as the interrupt found them and jumps
-// to the C handler, which saves what it uses and returns with reti.
+//   1. which channels are due (the 16-bit difference tick − count is not
+//      positive); a due channel at the last step of its run sends the whole
+//      interrupt to the C handler, and so does nothing due. The channels not
+//      due give the earliest difference so far;
+//   2. each due channel: STEP high, count − 1, next += interval, and its next
+//      tick joins the earliest;
+//   3. the compare goes to the earliest next step (or MAXL_STEP_MIN_TICKS
+//      from the count, if that is later: arm());
+//   4. each due channel: STEP low.
 //
-// The fast path reads the channel at fixed offsets: current_ (next 0..3,
+// A pulse is high from its channel's step 2 to its step 4, at least the ~40
+// cycles of steps 2 (the rest), 3 and 4 (2.5 µs at 16 MHz, over the 2 µs that
+// common drivers need), so it needs no wait; DIR cannot change inside a run.
+// ~190 cycles for one channel, ~270 for two due at once, where the C handler
+// takes ~280 for one.
+//
+// Everything else (a run's last step, nothing due, the direction) restores
+// every register as the interrupt found them and jumps to the C handler,
+// which saves what it uses and returns with reti.
+//
+// The fast path reads each channel at fixed offsets: current_ (next 0..3,
 // interval 4..7, count 8), then stepPin (port 9..10, mask 11). An idle
 // channel's current_.count is 0 (dropAll, promote), so the count test also
-// covers "no run".
+// covers "no run". Registers: r18:r19 the count at entry, r20:r21 a
+// difference or the earliest one, r22 the due channels (bit i for channel
+// i), r23 a loop count or the due channels left, Y the channel list, Z a
+// channel, X a port.
 namespace maxl_fw {
 namespace {
 #pragma GCC diagnostic push
@@ -244,13 +259,15 @@ static_assert(offsetof(StepChannel, current_) == 0 && sizeof(StepRun) == 9 && of
               "the step vector's fast path reads these offsets");
 #pragma GCC diagnostic pop
 static_assert(MAXL_STEP_MIN_TICKS <= 63, "adiw");
+static_assert(MAXL_STEP_CHANNELS >= 1 && MAXL_STEP_CHANNELS <= 8, "the step vector's fast path keeps a bit per channel");
 }  // namespace
 }  // namespace maxl_fw
 
-// The registers the fast path uses, and SREG (through r24), saved and restored.
-#define MAXL_STEP_ISR_SAVE \
-  "push r24\n\tin   r24, __SREG__\n\tpush r24\n\tpush r25\n\tpush r26\n\tpush r27\n\tpush r30\n\tpush r31\n\t"
-#define MAXL_STEP_ISR_RESTORE \
+#define MAXL_STEP_ISR_SAVE                                                                                      \
+  "push r24\n\tin   r24, __SREG__\n\tpush r24\n\tpush r25\n\tpush r26\n\tpush r27\n\tpush r30\n\tpush r31\n\t" \
+  "push r18\n\tpush r19\n\tpush r20\n\tpush r21\n\tpush r22\n\tpush r23\n\tpush r28\n\tpush r29\n\t"
+#define MAXL_STEP_ISR_RESTORE                                                                                  \
+  "pop  r29\n\tpop  r28\n\tpop  r23\n\tpop  r22\n\tpop  r21\n\tpop  r20\n\tpop  r19\n\tpop  r18\n\t"          \
   "pop  r31\n\tpop  r30\n\tpop  r27\n\tpop  r26\n\tpop  r25\n\tpop  r24\n\tout  __SREG__, r24\n\tpop  r24\n\t"
 
 extern "C" void __vector_maxl_step_slow(void) __attribute__((signal, used, externally_visible));
@@ -259,43 +276,74 @@ void __vector_maxl_step_slow(void) { maxl_fw::serviceAll(); }
 ISR(TIMER1_COMPB_vect, ISR_NAKED) {
   __asm__ __volatile__(
       MAXL_STEP_ISR_SAVE
-      // one channel, Z = it
-      "lds  r24, %[channels]\n\t"
-      "cpi  r24, 1\n\t"
-      "brne 9f\n\t"
-      "lds  r30, %[channel0]\n\t"
-      "lds  r31, %[channel0]+1\n\t"
-      // at least 2 steps left in the run going out
-      "ldd  r24, Z+8\n\t"
+      "lds  r18, %[tcntl]\n\t"
+      "lds  r19, %[tcnth]\n\t"
+      "ldi  r20, 0xFF\n\t"
+      "ldi  r21, 0x7F\n\t"
+      "clr  r22\n\t"
+      // 1. the channels from the last to the first (Y from the end of the list)
+      "lds  r23, %[channels]\n\t"
+      "tst  r23\n\t"
+      "breq 9f\n\t"
+      "mov  r24, r23\n\t"
+      "lsl  r24\n\t"
+      "ldi  r28, lo8(%[ch])\n\t"
+      "ldi  r29, hi8(%[ch])\n\t"
+      "add  r28, r24\n\t"
+      "brcc 1f\n\t"
+      "inc  r29\n\t"
+      "1:\n\t"
+      "ld   r31, -Y\n\t"
+      "ld   r30, -Y\n\t"
+      "lsl  r22\n\t"
+      "ldd  r24, Z+8\n\t"  // steps left in the run going out (0: no run)
       "andi r24, 0x7F\n\t"
+      "breq 2f\n\t"
+      "ldd  r26, Z+2\n\t"  // tick − count
+      "ldd  r27, Z+3\n\t"
+      "sub  r26, r18\n\t"
+      "sbc  r27, r19\n\t"
+      "breq 3f\n\t"
+      "brpl 4f\n\t"
+      "3:\n\t"             // due: more than this step left, or the C handler
       "cpi  r24, 2\n\t"
       "brlo 9f\n\t"
-      // due: the 16-bit difference count − tick is not negative
-      "lds  r26, %[tcntl]\n\t"
-      "lds  r27, %[tcnth]\n\t"
-      "ldd  r24, Z+2\n\t"
-      "ldd  r25, Z+3\n\t"
-      "cp   r26, r24\n\t"
-      "cpc  r27, r25\n\t"
-      "brpl 2f\n\t"
-      // everything else (here, within reach of the branches above)
+      "ori  r22, 1\n\t"
+      "rjmp 2f\n\t"
+      "4:\n\t"             // not due: the earliest so far?
+      "cp   r26, r20\n\t"
+      "cpc  r27, r21\n\t"
+      "brge 2f\n\t"
+      "movw r20, r26\n\t"
+      "2:\n\t"
+      "dec  r23\n\t"
+      "brne 1b\n\t"
+      "tst  r22\n\t"
+      "brne 8f\n\t"
+      // everything else: the C handler
       "9:\n\t"
       MAXL_STEP_ISR_RESTORE
       "jmp  __vector_maxl_step_slow\n\t"
-      "2:\n\t"
-      // STEP high
-      "ldd  r26, Z+9\n\t"
+      "8:\n\t"
+      // 2. the due channels, from the first
+      "ldi  r28, lo8(%[ch])\n\t"
+      "ldi  r29, hi8(%[ch])\n\t"
+      "mov  r23, r22\n\t"
+      "5:\n\t"
+      "ld   r30, Y+\n\t"
+      "ld   r31, Y+\n\t"
+      "lsr  r23\n\t"
+      "brcc 6f\n\t"
+      "ldd  r26, Z+9\n\t"  // STEP high
       "ldd  r27, Z+10\n\t"
       "ldd  r25, Z+11\n\t"
       "ld   r24, X\n\t"
       "or   r24, r25\n\t"
       "st   X, r24\n\t"
-      // count − 1 (BACKWARD, bit 7, stays)
-      "ldd  r24, Z+8\n\t"
+      "ldd  r24, Z+8\n\t"  // count − 1 (BACKWARD, bit 7, stays)
       "dec  r24\n\t"
       "std  Z+8, r24\n\t"
-      // next += interval, byte by byte
-      "ldd  r24, Z+0\n\t"
+      "ldd  r24, Z+0\n\t"  // next += interval, byte by byte
       "ldd  r25, Z+4\n\t"
       "add  r24, r25\n\t"
       "std  Z+0, r24\n\t"
@@ -303,28 +351,45 @@ ISR(TIMER1_COMPB_vect, ISR_NAKED) {
       "ldd  r25, Z+5\n\t"
       "adc  r24, r25\n\t"
       "std  Z+1, r24\n\t"
-      "ldd  r24, Z+2\n\t"
+      "ldd  r26, Z+2\n\t"
       "ldd  r25, Z+6\n\t"
-      "adc  r24, r25\n\t"
-      "std  Z+2, r24\n\t"
-      "ldd  r24, Z+3\n\t"
+      "adc  r26, r25\n\t"
+      "std  Z+2, r26\n\t"
+      "ldd  r27, Z+3\n\t"
       "ldd  r25, Z+7\n\t"
-      "adc  r24, r25\n\t"
-      "std  Z+3, r24\n\t"
-      // compare = the new tick, or count + MAXL_STEP_MIN_TICKS if that is later
+      "adc  r27, r25\n\t"
+      "std  Z+3, r27\n\t"
+      "sub  r26, r18\n\t"  // the new tick − count: the earliest so far?
+      "sbc  r27, r19\n\t"
+      "cp   r26, r20\n\t"
+      "cpc  r27, r21\n\t"
+      "brge 6f\n\t"
+      "movw r20, r26\n\t"
+      "6:\n\t"
+      "tst  r23\n\t"
+      "brne 5b\n\t"
+      // 3. compare = count at entry + the least difference, or the count now
+      // + MAXL_STEP_MIN_TICKS if that is later
+      "add  r20, r18\n\t"
+      "adc  r21, r19\n\t"
       "lds  r26, %[tcntl]\n\t"
       "lds  r27, %[tcnth]\n\t"
       "adiw r26, %[minTicks]\n\t"
-      "ldd  r24, Z+2\n\t"
-      "ldd  r25, Z+3\n\t"
-      "cp   r24, r26\n\t"
-      "cpc  r25, r27\n\t"
-      "brpl 1f\n\t"
-      "movw r24, r26\n\t"
-      "1:\n\t"
-      "sts  %[ocrh], r25\n\t"
-      "sts  %[ocrl], r24\n\t"
-      // STEP low
+      "cp   r20, r26\n\t"
+      "cpc  r21, r27\n\t"
+      "brpl 7f\n\t"
+      "movw r20, r26\n\t"
+      "7:\n\t"
+      "sts  %[ocrh], r21\n\t"
+      "sts  %[ocrl], r20\n\t"
+      // 4. STEP low on the due channels
+      "ldi  r28, lo8(%[ch])\n\t"
+      "ldi  r29, hi8(%[ch])\n\t"
+      "5:\n\t"
+      "ld   r30, Y+\n\t"
+      "ld   r31, Y+\n\t"
+      "lsr  r22\n\t"
+      "brcc 6f\n\t"
       "ldd  r26, Z+9\n\t"
       "ldd  r27, Z+10\n\t"
       "ldd  r25, Z+11\n\t"
@@ -332,10 +397,13 @@ ISR(TIMER1_COMPB_vect, ISR_NAKED) {
       "com  r25\n\t"
       "and  r24, r25\n\t"
       "st   X, r24\n\t"
+      "6:\n\t"
+      "tst  r22\n\t"
+      "brne 5b\n\t"
       MAXL_STEP_ISR_RESTORE
       "reti\n\t"
       :
-      : [channels] "i"(&maxl_fw::StepTimer::count_), [channel0] "i"(&maxl_fw::StepTimer::channels_[0]),
+      : [channels] "i"(&maxl_fw::StepTimer::count_), [ch] "i"(&maxl_fw::StepTimer::channels_[0]),
         [tcntl] "n"(_SFR_MEM_ADDR(TCNT1L)), [tcnth] "n"(_SFR_MEM_ADDR(TCNT1H)), [ocrl] "n"(_SFR_MEM_ADDR(OCR1BL)),
         [ocrh] "n"(_SFR_MEM_ADDR(OCR1BH)), [minTicks] "I"(MAXL_STEP_MIN_TICKS));
 }

@@ -132,7 +132,7 @@ class StepTimer {
   // for the interrupt
   static StepChannel* channels_[MAXL_STEP_CHANNELS];
   static uint8_t count_;
-  static inline void arm();
+  static void arm();
 };
 
 }  // namespace maxl_fw

@@ -1,6 +1,7 @@
 #include "maxl/readers/stepper.h"
 
 #include "maxl/device/device.h"
+#include "maxl/readers/step_planner.h"
 #include "maxl/time/wrap.h"
 
 using namespace maxl_fw;
@@ -18,6 +19,13 @@ MAXL_Stepper::MAXL_Stepper(const char* name, uint8_t stepPin, uint8_t dirPin, fl
 {
 }
 
+#if MAXL_STEP_TIMER && !defined(__AVR__)
+MAXL_Stepper::~MAXL_Stepper() {
+  MAXL_StepPlanner::leave(this);
+  StepTimer::detach(&generator_.channel());
+}
+#endif
+
 void MAXL_Stepper::onBegin() {
   generator_.begin();
 #if MAXL_STEP_TIMER
@@ -34,9 +42,11 @@ bool MAXL_Stepper::useStepTimer(bool on) {
   if (on && !timed_) {
     generator_.begin();
     timed_ = generator_.pinsValid() && StepTimer::attach(&generator_.channel());
+    if (timed_) MAXL_StepPlanner::join(this);
     synced_ = false;
   } else if (!on && timed_) {
     stopTimed();
+    MAXL_StepPlanner::leave(this);
     StepTimer::detach(&generator_.channel());
     timed_ = false;
   }
@@ -73,7 +83,7 @@ void MAXL_Stepper::onTick(MAXL_Device& device) {
   MAXL_TrackPositionLinear::onTick(device);
 #if MAXL_STEP_TIMER
   if (timed_) {
-    if (known()) plan(device);
+    if (known()) MAXL_StepPlanner::plan(device, this);
     return;
   }
 #endif
@@ -98,36 +108,60 @@ void MAXL_Stepper::stopTimed() {
   int16_t dropped = generator_.channel().clear();
   StepTimer::kick();
   hal::unlockInterrupts(sreg);
-  generator_.setSteps((int32_t)((uint32_t)generator_.steps() - (uint32_t)(int32_t)dropped));
+  tookBack(dropped);
   synced_ = false;
+  MAXL_StepPlanner::changed();
 }
 
-// Motion's path changed other than by new timing (its epoch moved on). The
-// lookahead never plans past what is certain, so only a HALT can have made
-// planned steps wrong: HALT mode 0 from the device clock on, mode 1 from its
-// time. Those steps are taken back (if still in the ring), then the plan goes
-// on from Motion's new state.
-__attribute__((noinline)) void MAXL_Stepper::resync(const Motion& motion, uint32_t now) {
-  if (synced_) {
-    uint32_t from = motion.haltPending() && timeBefore(now, motion.haltAt()) ? motion.haltAt() : now;
-    if (timeBefore(from, planned_)) {
-      uint8_t sreg = hal::lockInterrupts();
-      int16_t dropped = generator_.channel().dropFrom(StepTimer::ticksAt(from));
-      hal::unlockInterrupts(sreg);
-      generator_.setSteps((int32_t)((uint32_t)generator_.steps() - (uint32_t)(int32_t)dropped));
-      planned_ = from;
-    }
-  } else {
-    planned_ = now;
-  }
-  uint8_t slot = this->slot();
-  int32_t here = motion.lookFrom(look_, slot);
-  if (look_.state != Lookahead::REST && timeBefore(planned_, look_.chunkStart)) planned_ = look_.chunkStart;
+void MAXL_Stepper::dropFrom(uint32_t from) {
+  uint8_t sreg = hal::lockInterrupts();
+  int16_t dropped = generator_.channel().dropFrom(StepTimer::ticksAt(from));
+  hal::unlockInterrupts(sreg);
+  tookBack(dropped);
+}
+
+// Steps taken back from the ring were counted when planned: the count goes back.
+__attribute__((noinline)) void MAXL_Stepper::tookBack(int16_t dropped) {
+  generator_.setSteps((int32_t)((uint32_t)generator_.steps() - (uint32_t)(int32_t)dropped));
+}
+
+// ---- this stepper's part of the planner's grid
+
+__attribute__((noinline)) void MAXL_Stepper::gridRestart(const Motion& motion, uint32_t from, bool drop) {
+  if (drop) dropFrom(from);
+  motion.lookFrom(look_, slot());
+}
+
+__attribute__((noinline)) void MAXL_Stepper::gridJoin(const Motion& motion, uint32_t t) {
   uint32_t until;
-  motion.lookSpan(look_, slot, planned_, until);  // crosses what lies before planned_
-  (void)here;
-  plannedUnits_ = motion.lookAt(look_, slot, planned_);
+  motion.lookSpan(look_, slot(), t, until);  // crosses what lies before t
+  plannedUnits_ = motion.lookAt(look_, slot(), t);
   synced_ = true;
+}
+
+__attribute__((noinline)) uint16_t MAXL_Stepper::gridWindow(const Motion& motion) const {
+  return windowFor(motion.lookCurvature(look_));
+}
+
+// Where the slot would be at t (RUN or BRAKE), without moving the walk: the
+// track's quadratic on a copy, chunk by chunk (fixed_point.h). Only to size a
+// window, so a segment's end is not snapped to its p1 here.
+__attribute__((noinline)) bool MAXL_Stepper::gridTooMany(uint32_t t) const {
+  FixedTrack k = look_.track;
+  uint32_t x = t - look_.chunkStart;
+  for (; x >= 65536ul; x -= 65536ul) k.nextChunk();
+  int32_t w = (int32_t)((uint32_t)k.B + (uint32_t)mulhi16Cold(k.C, (uint16_t)x));
+  int32_t p = (int32_t)((uint32_t)k.P + (uint32_t)mulhi16Cold(w, (uint16_t)x));
+  return tooManySteps((int32_t)((uint32_t)p - (uint32_t)plannedUnits_));
+}
+
+__attribute__((noinline)) int32_t MAXL_Stepper::gridEnd(const Motion& motion, uint32_t t1) {
+  return motion.lookAt(look_, slot(), t1);
+}
+
+__attribute__((noinline)) void MAXL_Stepper::gridPlan(const Motion& motion, uint32_t t0, uint32_t t1, int32_t p1, uint32_t now) {
+  schedule(t0, t1, plannedUnits_, p1, motion.lookCurvature(look_), now);
+  plannedUnits_ = p1;
 }
 
 namespace {
@@ -135,62 +169,12 @@ namespace {
 // as two 32×16 multiplies, rounded up.
 int32_t bendUnits(int32_t c, uint16_t w) {
   if (!c) return 0;
-  uint32_t a = (uint32_t)(c < 0 ? -(int64_t)c : c);
+  uint32_t a = c < 0 ? (uint32_t)0 - (uint32_t)c : (uint32_t)c;  // |c|, 2^31 for INT32_MIN
   if (a > 0x7FFFFFFFul) a = 0x7FFFFFFFul;
   int32_t cw = mulhi16Cold((int32_t)a, w);           // |C|·W/2^16 (floor), < 2^31
   return (mulhi16Cold(cw, w) >> 2) + 1;              // |C|·W²/2^34, + 1 for the floors
 }
 }  // namespace
-
-__attribute__((noinline)) void MAXL_Stepper::plan(MAXL_Device& device) {
-  const Motion& motion = device.motion();
-  uint32_t now = device.now();
-  // A plan far behind the clock (loop() stalled for more than 8 ms, far past
-  // the lead): start again from Motion at the clock; what the ring still
-  // holds goes out at once, and the windows catch the motor up.
-  if (synced_ && timeBefore(planned_ + 8000u, now)) synced_ = false;
-  if (!synced_ || look_.epoch != motion.epoch()) resync(motion, now);
-  StepChannel& channel = generator_.channel();
-  uint8_t slot = this->slot();
-  const uint32_t horizon = now + MAXL_STEP_LEAD_US;
-  while (timeBefore(planned_, horizon) && channel.free() >= 2) {
-    uint32_t until;
-    if (!motion.lookSpan(look_, slot, planned_, until)) {
-      // Not certain past planned_. At rest (no timing ahead) the position
-      // holds at least until the device clock: catch up to it if needed.
-      if (look_.state == Lookahead::REST && timeBefore(planned_, now)) {
-        int32_t here = motion.lookAt(look_, slot, now);
-        schedule(planned_, now, here, here, 0, now);
-        planned_ = now;
-        plannedUnits_ = here;
-      }
-      break;
-    }
-    uint32_t t1 = until;
-    int32_t c = motion.lookCurvature(look_);
-    int32_t p1;
-    if (look_.state != Lookahead::REST) {
-      // A window holds at most MAXL_STEP_WINDOW_STEPS steps (a run's count is
-      // 7 bits, and a burst may need the rest): where it would hold more, the
-      // lookahead goes back (a copy) and the window is halved.
-      uint16_t w = windowFor(c);
-      Lookahead before = look_;
-      for (;;) {
-        uint32_t grid = (planned_ & ~(uint32_t)(w - 1)) + w;  // next multiple of w
-        if (timeBefore(grid, t1)) t1 = grid;
-        p1 = motion.lookAt(look_, slot, t1);
-        if (w <= MAXL_STEP_WINDOW_MIN_US || !tooManySteps((int32_t)((uint32_t)p1 - (uint32_t)plannedUnits_))) break;
-        look_ = before;
-        w >>= 1;
-      }
-    } else {
-      p1 = motion.lookAt(look_, slot, t1);
-    }
-    schedule(planned_, t1, plannedUnits_, p1, c, now);
-    planned_ = t1;
-    plannedUnits_ = p1;
-  }
-}
 
 // More than MAXL_STEP_WINDOW_STEPS steps in a move of `delta` units. (The
 // product wraps only for steps over 680 mm: windows are then shorter than
@@ -201,16 +185,22 @@ bool MAXL_Stepper::tooManySteps(int32_t delta) const {
 }
 
 // The longest window (a power of two) whose bend c·W²/4 = |C|·W²/2^34 is at
-// most s/8: with W = 2^k that is |C| <= s·2^(31 − 2k), a shift per k.
-uint16_t MAXL_Stepper::windowFor(int32_t c) const {
+// most s/8: with W = 2^k that is |C| <= s·2^(31 − 2k). From the longest
+// window down, each halving multiplies the bound by 4 (saturating: a bound
+// past 2^32 holds for every C), so there is no variable shift.
+namespace {
+constexpr uint8_t log2u(uint32_t x) { return x <= 1 ? 0 : (uint8_t)(1 + log2u(x >> 1)); }
+const uint8_t WINDOW_MAX_SHIFT = (uint8_t)(31 - 2 * log2u(MAXL_STEP_WINDOW_MAX_US));  // 9 for 2048 µs
+}  // namespace
+
+__attribute__((noinline)) uint16_t MAXL_Stepper::windowFor(int32_t c) const {
   uint32_t a = c < 0 ? (uint32_t)0 - (uint32_t)c : (uint32_t)c;
   uint32_t s = (uint32_t)generator_.unitsPerStep();
+  uint32_t bound = s >= (0x80000000ul >> WINDOW_MAX_SHIFT) ? 0xFFFFFFFFul : s << WINDOW_MAX_SHIFT;
   uint16_t w = MAXL_STEP_WINDOW_MAX_US;
-  uint8_t k = 0;
-  while ((1u << k) < w) k++;
-  for (; w > MAXL_STEP_WINDOW_MIN_US; w >>= 1, k--) {
-    uint8_t shift = (uint8_t)(31 - 2 * k);  // k <= 11: shift >= 9
-    if (s >= (0x80000000ul >> shift) || a <= (s << shift)) break;
+  while (w > MAXL_STEP_WINDOW_MIN_US && a > bound) {
+    w >>= 1;
+    bound = bound >= 0x40000000ul ? 0xFFFFFFFFul : bound << 2;
   }
   return w;
 }

@@ -11,17 +11,20 @@
 // steps come from its interrupt at their own times (step_timer.h), planned
 // by loop() a few ms ahead:
 //
-//   loop():    from where the last plan ended (t0), take the next window of
-//              the path, up to the next multiple of its length W (a power of
-//              two, 128..2048 µs, shorter where the path bends more), or to
-//              the end of its phase, segment or brake piece, whichever comes
-//              first; evaluate the position at the window's end with the
-//              device's own fixed-point path (Motion's Lookahead, bit for bit
-//              what Motion will compute); turn the window into step times
-//              (MAXL_StepWindow) and hand them to the timer. Repeat until the
-//              plan reaches MAXL_STEP_LEAD_US past the device clock, or what is
-//              certain ends (no timing yet, braking, a pending HALT).
-//   interrupt: emits each step at its time.
+//   loop():    the device's step planner (step_planner.h) plans one window
+//              grid for all its timed steppers: from where the last plan
+//              ended (t0), the next window of the path, up to the next
+//              multiple of its length W (a power of two, 128..2048 µs, the
+//              shortest any of the steppers needs where the path bends), or
+//              to the end of its phase, segment or brake piece, whichever
+//              comes first; each stepper evaluates its slot at the window's
+//              end with the device's own fixed-point path (Motion's
+//              Lookahead, bit for bit what Motion will compute) and turns
+//              the window into step times (MAXL_StepWindow) for the timer.
+//              Repeat until the plan reaches MAXL_STEP_LEAD_US past the
+//              device clock, or what is certain ends (no timing yet,
+//              braking, a pending HALT).
+//   interrupt: emits every due step of every stepper, in one pass.
 //
 // Inside a window the steps follow a straight line between the exact
 // positions at its ends. A piece of the path is a quadratic p(t), with half
@@ -51,6 +54,11 @@
 class MAXL_Stepper : public MAXL_TrackPositionLinear {
  public:
   MAXL_Stepper(const char* name, uint8_t stepPin, uint8_t dirPin, float stepsPerUnit, bool invertDirection = false);
+#if MAXL_STEP_TIMER && !defined(__AVR__)
+  // Leaves the step timer and the planner (a test's stepper on the stack; a
+  // sketch's static steppers live as long as the board runs).
+  ~MAXL_Stepper();
+#endif
 
   MAXL_StepGenerator& generator() { return generator_; }
   // The motor's step count: steps emitted so far.
@@ -76,14 +84,30 @@ class MAXL_Stepper : public MAXL_TrackPositionLinear {
   bool behind_ : 1;
   bool timed_ : 1;
 #if MAXL_STEP_TIMER
+  friend class MAXL_StepPlanner;
   bool wantTimer_ : 1;
-  bool synced_ : 1;
+  bool synced_ : 1;  // look_ and plannedUnits_ follow the planner's grid
   maxl_fw::Lookahead look_;
-  uint32_t planned_;      // device µs the plan reaches
-  int32_t plannedUnits_;  // the position there
-  void plan(MAXL_Device& device);
-  void resync(const maxl_fw::Motion& motion, uint32_t now);
+  int32_t plannedUnits_;  // the position where the plan ends
+  // ---- this stepper's part of the planner's grid (step_planner.cpp)
+  // Starts the walk where Motion is, first taking back the steps planned
+  // from `from` on when `drop`.
+  void gridRestart(const maxl_fw::Motion& motion, uint32_t from, bool drop);
+  // Walks on to `t` (where the grid starts) and takes the position there.
+  void gridJoin(const maxl_fw::Motion& motion, uint32_t t);
+  // The longest window this stepper's slot allows for the bend (windowFor).
+  uint16_t gridWindow(const maxl_fw::Motion& motion) const;
+  // Whether a window ending at t would hold more than MAXL_STEP_WINDOW_STEPS steps.
+  bool gridTooMany(uint32_t t) const;
+  // The position at the window's end t1 (the walk moves on to it).
+  int32_t gridEnd(const maxl_fw::Motion& motion, uint32_t t1);
+  // The window [t0, t1] to p1 becomes step times.
+  void gridPlan(const maxl_fw::Motion& motion, uint32_t t0, uint32_t t1, int32_t p1, uint32_t now);
+  // The steps of one window [t0, t1] from p0 to p1 on a piece of half acceleration c.
   void schedule(uint32_t t0, uint32_t t1, int32_t p0, int32_t p1, int32_t curvature, uint32_t now);
+  // Takes back every planned step from device time `from` on (a HALT, a resync).
+  void dropFrom(uint32_t from);
+  void tookBack(int16_t dropped);
   uint16_t windowFor(int32_t curvature) const;
   bool tooManySteps(int32_t delta) const;
   void stopTimed();
