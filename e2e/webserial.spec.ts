@@ -33,6 +33,17 @@ test.afterAll(() => {
   stopCpuBurners(burners);
 });
 
+// A failed run says what the workbench logged and what reached the fake boards, so
+// that a late stream can be told apart: the author's (its log) or the fake's (a
+// board's `late` chunks, fakeBoardLink.ts).
+test.afterEach(async ({ page }, testInfo) => {
+  if (testInfo.status === testInfo.expectedStatus) return;
+  const log = await page.getByTestId('log-entry').allTextContents().catch(() => []);
+  const inbound = await truth(page).then((t) => t.inbound).catch((err: Error) => `unavailable: ${err.message}`);
+  await testInfo.attach('diagnosis', { body: JSON.stringify({ log, inbound }, null, 2), contentType: 'application/json' });
+  console.log(`log:\n  ${log.join('\n  ')}\ninbound: ${JSON.stringify(inbound)}`);
+});
+
 async function installFake(page: Page, serialInWorkers = true): Promise<void> {
   await page.addInitScript(
     ({ pageModule, workerModule, serialInWorkers }) => {

@@ -17,13 +17,19 @@
  * Ports granted survive a reload (sessionStorage), as a browser's permissions do.
  */
 import { rpcClient } from './fakeSerialRpc.ts';
+import { streamsOverChannel } from './fakePortStreams.ts';
 import type { FakePortInfo } from './fakeSerialWorker.ts';
+import type { InboundCounts } from './fakeBoardLink.ts';
 
 const GRANTED_KEY = 'fakeSerial.granted';
 
 export interface FakeSerialControl {
-  /** Ground truth: each simulated motor's step count now, the devices whose ports were opened, requestPort() calls. */
-  truth(): Promise<{ steps: Record<string, number>; opened: string[]; requests: number }>;
+  /**
+   * Ground truth: each simulated motor's step count now, the devices whose ports
+   * were opened, requestPort() calls, and for each opened board the chunks that
+   * reached it and how many came after their time (fakeBoardLink.ts).
+   */
+  truth(): Promise<{ steps: Record<string, number>; opened: string[]; requests: number; inbound: Record<string, InboundCounts> }>;
 }
 
 type Call = ReturnType<typeof rpcClient>;
@@ -40,7 +46,7 @@ class FakePagePort {
   async open(options: { baudRate: number }): Promise<void> {
     if (!(options.baudRate > 0)) throw new TypeError('baudRate is required');
     if (this.readable) throw new DOMException('The port is already open.', 'InvalidStateError');
-    const streams = await this.call<{ readable: ReadableStream<Uint8Array>; writable: WritableStream<Uint8Array> }>('open', this.info.index);
+    const streams = streamsOverChannel(await this.call<MessagePort>('open', this.info.index));
     this.readable = streams.readable;
     this.writable = streams.writable;
   }

@@ -2,13 +2,15 @@
  * The fake navigator.serial's half in the MAXL worker, loaded there through the
  * worker test hook (docs/test-hooks.md). A worker's navigator.serial has
  * getPorts() but no requestPort(); its ports are the ones granted on the page,
- * which the fake boards' worker keeps. open() has that worker transfer the
- * device's link streams here, straight from the boards: no byte crosses the page.
+ * which the fake boards' worker keeps. open() has that worker connect the
+ * device's board to a MessageChannel whose other end comes here, and the port's
+ * streams run over it (fakePortStreams.ts): no byte crosses the page.
  * Or, if the spec plays a browser without serial ports in workers, it takes
  * navigator.serial and navigator.usb away here.
  */
 /// <reference lib="webworker" />
 import { rpcClient } from './fakeSerialRpc.ts';
+import { streamsOverChannel } from './fakePortStreams.ts';
 import type { FakePortInfo } from './fakeSerialWorker.ts';
 
 type Call = ReturnType<typeof rpcClient>;
@@ -26,7 +28,7 @@ class FakeWorkerPort extends EventTarget {
   async open(options: { baudRate: number }): Promise<void> {
     if (!(options.baudRate > 0)) throw new TypeError('baudRate is required');
     if (this.readable) throw new DOMException('The port is already open.', 'InvalidStateError');
-    const streams = await this.call<{ readable: ReadableStream<Uint8Array>; writable: WritableStream<Uint8Array> }>('open', this.info.index);
+    const streams = streamsOverChannel(await this.call<MessagePort>('open', this.info.index));
     this.readable = streams.readable;
     this.writable = streams.writable;
   }

@@ -11,18 +11,24 @@
  *    browser whose workers reach no port;
  *  - the MAXL worker's fake (fakeSerialInWorker.ts), over a MessageChannel:
  *    whether this browser's workers have serial ports at all, getPorts and open.
- *    Opening a port transfers its device's link streams straight to the opener:
- *    from the MAXL worker's open, no byte crosses the page.
+ *    Opening a port hands the opener one end of a MessageChannel to its board
+ *    (fakePortStreams.ts, fakeBoardLink.ts): from the MAXL worker's open, no
+ *    byte crosses the page.
  *
  * The boards run on paced virtual time: like firmware, which loops without
  * waiting on a browser's timers, every device loop and link delay happens at its
- * own time; only the author, in the MAXL worker, runs on the wall clock.
+ * own time; only the author, in the MAXL worker, runs on the wall clock. Their
+ * time trails the wall clock by BOARD_LAG_US, so that bytes the author wrote
+ * reach a board at the time it wrote them even when this worker is held back
+ * (fakeBoardLink.ts says why that is sound).
  */
 /// <reference lib="webworker" />
 import { PacedScheduler } from '../../core/index.ts';
+import type { Link } from '../../core/net/link.ts';
 import type { SimulatedMachine } from '../../core/sim/machine.ts';
 import { startSimulatedMachine } from '../../app/worker/simulatedMachines.ts';
 import { RpcError, rpcServer } from './fakeSerialRpc.ts';
+import { connectBoard, laggedWallNow, type InboundCounts } from './fakeBoardLink.ts';
 
 const scope = self as unknown as DedicatedWorkerGlobalScope;
 
@@ -41,10 +47,12 @@ export interface FakePortInfo {
 
 interface Board {
   name: string;
-  readable: ReadableStream<Uint8Array> | null;
-  writable: WritableStream<Uint8Array> | null;
+  link: Link;
+  /** Set once opened: the bytes that reached it from its opener. */
+  inbound: InboundCounts | null;
 }
 
+const scheduler = new PacedScheduler({ wallNow: laggedWallNow });
 let sim: SimulatedMachine;
 let boards: Board[] = [];
 let granted = 0;
@@ -63,16 +71,20 @@ function grantedPorts(): FakePortInfo[] {
   return boards.slice(0, granted).map((_, i) => info(i));
 }
 
-/** Hands a granted port's link streams to whoever opens it (once: a device's link cannot be handed out twice). */
+/** Connects a granted port's board to whoever opens it, over a channel (once: a device's link cannot be handed out twice). */
 function open(index: number): { value: unknown; transfer: Transferable[] } {
   const board = boards[index];
   if (!board || index >= granted) throw new RpcError('NotFoundError', `port ${index} is not granted`);
-  if (!board.readable || !board.writable) throw new RpcError('InvalidStateError', 'The port is already open.');
-  const { readable, writable } = board;
-  board.readable = null;
-  board.writable = null;
+  if (board.inbound) throw new RpcError('InvalidStateError', 'The port is already open.');
+  const channel = new MessageChannel();
+  board.inbound = connectBoard(board.link, channel.port1, scheduler);
   opened.push(board.name);
-  return { value: { readable, writable }, transfer: [readable, writable] as unknown as Transferable[] };
+  return { value: channel.port2, transfer: [channel.port2] };
+}
+
+/** For each opened board, the bytes that reached it and how many came after their time. */
+function inbound(): Record<string, InboundCounts> {
+  return Object.fromEntries(boards.filter((b) => b.inbound).map((b) => [b.name, { ...b.inbound! }]));
 }
 
 /** The page's calls. */
@@ -90,7 +102,7 @@ async function fromPage(call: string, args: unknown): Promise<{ value: unknown; 
       return open(args as number);
     case 'truth':
       sim.sync();
-      return { value: { steps: sim.plant.motorSteps(), opened, requests } };
+      return { value: { steps: sim.plant.motorSteps(), opened, requests, inbound: inbound() } };
   }
   throw new RpcError('NotSupportedError', `the fake boards have no page call ${call}`);
 }
@@ -115,8 +127,8 @@ scope.addEventListener('message', async (m: MessageEvent) => {
   granted = msg.granted;
   serialInWorkers = msg.serialInWorkers;
   rpcServer(msg.maxlWorker, fromMaxlWorker);
-  sim = await startSimulatedMachine(msg.presetId, new PacedScheduler(), (err) => console.error('fake boards:', err));
-  boards = Object.entries(sim.links).map(([name, link]) => ({ name, readable: link.readable, writable: link.writable }));
+  sim = await startSimulatedMachine(msg.presetId, scheduler, (err) => console.error('fake boards:', err));
+  boards = Object.entries(sim.links).map(([name, link]) => ({ name, link, inbound: null }));
   started();
 });
 rpcServer(scope as unknown as Parameters<typeof rpcServer>[0], fromPage);
