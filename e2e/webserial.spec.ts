@@ -35,14 +35,14 @@ test.afterAll(() => {
 
 // Each run says what reached the fake boards (how many chunks came after their time:
 // fakeBoardLink.ts), and a failed run what the workbench logged, so that a late
-// stream can be told apart: the author's (its log) or the fake's (a board's `late`).
+// stream can be told apart: the author's (its log) or the fake's (a board's `late` chunks and `worstReplyWait_us`).
 test.afterEach(async ({ page }, testInfo) => {
   const faked = await page.evaluate(() => 'fakeSerialReady' in window).catch(() => false);
-  const inbound = faked ? await truth(page).then((t) => t.inbound).catch((err: Error) => `unavailable: ${err.message}`) : 'no fake boards';
-  if (faked) console.log(`${testInfo.title} [${testInfo.status}] inbound: ${JSON.stringify(inbound)}`);
+  const traffic = faked ? await truth(page).then((t) => t.traffic).catch((err: Error) => `unavailable: ${err.message}`) : 'no fake boards';
+  if (faked) console.log(`${testInfo.title} [${testInfo.status}] traffic: ${JSON.stringify(traffic)}`);
   if (testInfo.status === testInfo.expectedStatus) return;
   const log = await page.getByTestId('log-entry').allTextContents().catch(() => []);
-  await testInfo.attach('diagnosis', { body: JSON.stringify({ log, inbound }, null, 2), contentType: 'application/json' });
+  await testInfo.attach('diagnosis', { body: JSON.stringify({ log, traffic }, null, 2), contentType: 'application/json' });
   console.log(`log:\n  ${log.join('\n  ')}`);
 });
 
@@ -95,7 +95,7 @@ async function jogMovesTheMotors(page: Page): Promise<void> {
   const after = await truth(page);
   expect(after.steps.b - before.b).toBe(800);
   // The bytes reached every board through the fake's stamped channel (fakePortStreams.ts).
-  for (const board of ['motorA', 'motorB', 'lightPainter']) expect(after.inbound[board]?.chunks).toBeGreaterThan(0);
+  for (const board of ['motorA', 'motorB', 'lightPainter']) expect(after.traffic[board]?.chunks).toBeGreaterThan(0);
   // Nothing starved: no device braked by itself.
   await expect(page.getByTestId('phase')).toHaveText('ready');
 }

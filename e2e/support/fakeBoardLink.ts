@@ -31,25 +31,34 @@ import type { ChannelClosed, StampedChunk } from './fakePortStreams.ts';
 const CLOCK_RESOLUTION_US = 200;
 
 /** How far the fake boards' simulated time trails the wall clock, µs. */
-export const BOARD_LAG_US = 100_000;
+export const BOARD_LAG_US = 250_000;
 
 /** The boards' wall clock (µs), shifted back by the lag: give it to their PacedScheduler. */
 export function laggedWallNow(): number {
   return performance.now() * 1000 - BOARD_LAG_US;
 }
 
-export interface InboundCounts {
+export interface BoardTraffic {
   /** chunks the opener wrote */
   chunks: number;
   /** of them, how many reached the board's link after their time (by more than the clocks' resolution) */
   late: number;
   /** the latest of those, µs after its time */
   worstLate_us: number;
+  /** chunks the board sent back */
+  replies: number;
+  /**
+   * The longest a reply waited for the boards' worker, µs: how far the simulation
+   * was behind its pace (the lagged wall clock) when the board sent it. A real
+   * board answers at once; a fake one held back this long answers this much later
+   * (acknowledgements included, which the author's streamer waits for).
+   */
+  worstReplyWait_us: number;
 }
 
 /** Connects `link` (a board's simulated link, author's end) to the opener behind `channel`. */
-export function connectBoard(link: Link, channel: MessagePort, scheduler: PacedScheduler): InboundCounts {
-  const counts: InboundCounts = { chunks: 0, late: 0, worstLate_us: 0 };
+export function connectBoard(link: Link, channel: MessagePort, scheduler: PacedScheduler): BoardTraffic {
+  const counts: BoardTraffic = { chunks: 0, late: 0, worstLate_us: 0, replies: 0, worstReplyWait_us: 0 };
   const writer = link.writable.getWriter();
   channel.onmessage = (m: MessageEvent<StampedChunk>) => {
     const { bytes, sentAt_ms } = m.data;
@@ -69,7 +78,10 @@ export function connectBoard(link: Link, channel: MessagePort, scheduler: PacedS
       const { value, done } = await reader.read().catch(() => ({ value: undefined, done: true }));
       if (done) break;
       // Copied, not transferred: a link may hand out views of one buffer.
-      if (value) channel.postMessage(value);
+      if (!value) continue;
+      channel.postMessage(value);
+      counts.replies++;
+      counts.worstReplyWait_us = Math.max(counts.worstReplyWait_us, scheduler.virtualTimeAtWall(laggedWallNow()) - scheduler.now());
     }
     channel.postMessage({ closed: true } satisfies ChannelClosed);
   })();

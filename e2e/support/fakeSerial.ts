@@ -19,7 +19,7 @@
 import { rpcClient } from './fakeSerialRpc.ts';
 import { streamsOverChannel } from './fakePortStreams.ts';
 import type { FakePortInfo } from './fakeSerialWorker.ts';
-import type { InboundCounts } from './fakeBoardLink.ts';
+import type { BoardTraffic } from './fakeBoardLink.ts';
 
 const GRANTED_KEY = 'fakeSerial.granted';
 
@@ -29,7 +29,7 @@ export interface FakeSerialControl {
    * were opened, requestPort() calls, and for each opened board the chunks that
    * reached it and how many came after their time (fakeBoardLink.ts).
    */
-  truth(): Promise<{ steps: Record<string, number>; opened: string[]; requests: number; inbound: Record<string, InboundCounts> }>;
+  truth(): Promise<{ steps: Record<string, number>; opened: string[]; requests: number; traffic: Record<string, BoardTraffic> }>;
 }
 
 type Call = ReturnType<typeof rpcClient>;

@@ -28,7 +28,7 @@ import type { Link } from '../../core/net/link.ts';
 import type { SimulatedMachine } from '../../core/sim/machine.ts';
 import { startSimulatedMachine } from '../../app/worker/simulatedMachines.ts';
 import { RpcError, rpcServer } from './fakeSerialRpc.ts';
-import { connectBoard, laggedWallNow, type InboundCounts } from './fakeBoardLink.ts';
+import { connectBoard, laggedWallNow, type BoardTraffic } from './fakeBoardLink.ts';
 
 const scope = self as unknown as DedicatedWorkerGlobalScope;
 
@@ -49,7 +49,7 @@ interface Board {
   name: string;
   link: Link;
   /** Set once opened: the bytes that reached it from its opener. */
-  inbound: InboundCounts | null;
+  traffic: BoardTraffic | null;
 }
 
 const scheduler = new PacedScheduler({ wallNow: laggedWallNow });
@@ -75,16 +75,16 @@ function grantedPorts(): FakePortInfo[] {
 function open(index: number): { value: unknown; transfer: Transferable[] } {
   const board = boards[index];
   if (!board || index >= granted) throw new RpcError('NotFoundError', `port ${index} is not granted`);
-  if (board.inbound) throw new RpcError('InvalidStateError', 'The port is already open.');
+  if (board.traffic) throw new RpcError('InvalidStateError', 'The port is already open.');
   const channel = new MessageChannel();
-  board.inbound = connectBoard(board.link, channel.port1, scheduler);
+  board.traffic = connectBoard(board.link, channel.port1, scheduler);
   opened.push(board.name);
   return { value: channel.port2, transfer: [channel.port2] };
 }
 
 /** For each opened board, the bytes that reached it and how many came after their time. */
-function inbound(): Record<string, InboundCounts> {
-  return Object.fromEntries(boards.filter((b) => b.inbound).map((b) => [b.name, { ...b.inbound! }]));
+function traffic(): Record<string, BoardTraffic> {
+  return Object.fromEntries(boards.filter((b) => b.traffic).map((b) => [b.name, { ...b.traffic! }]));
 }
 
 /** The page's calls. */
@@ -102,7 +102,7 @@ async function fromPage(call: string, args: unknown): Promise<{ value: unknown; 
       return open(args as number);
     case 'truth':
       sim.sync();
-      return { value: { steps: sim.plant.motorSteps(), opened, requests, inbound: inbound() } };
+      return { value: { steps: sim.plant.motorSteps(), opened, requests, traffic: traffic() } };
   }
   throw new RpcError('NotSupportedError', `the fake boards have no page call ${call}`);
 }
@@ -128,7 +128,7 @@ scope.addEventListener('message', async (m: MessageEvent) => {
   serialInWorkers = msg.serialInWorkers;
   rpcServer(msg.maxlWorker, fromMaxlWorker);
   sim = await startSimulatedMachine(msg.presetId, scheduler, (err) => console.error('fake boards:', err));
-  boards = Object.entries(sim.links).map(([name, link]) => ({ name, link, inbound: null }));
+  boards = Object.entries(sim.links).map(([name, link]) => ({ name, link, traffic: null }));
   started();
 });
 rpcServer(scope as unknown as Parameters<typeof rpcServer>[0], fromPage);
