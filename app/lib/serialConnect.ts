@@ -1,27 +1,18 @@
 /**
- * Boards over Web Serial. "Add device" asks the browser for a port (this needs the
- * user's click, so it runs on the page), opens it, and hands its two streams to the
- * worker, which runs the session. Without navigator.serial but with WebUSB, the
- * web-serial-polyfill drives USB CDC boards; with neither, the page says what is
- * needed.
+ * Boards over Web Serial, the page's part. "Add device" asks the browser for a
+ * port (this needs the user's click, so it runs on the page); the MAXL worker then
+ * finds that port among its own granted ports, opens it and owns its streams
+ * (app/worker/workerSerial.ts), so that no byte crosses the page. Without
+ * navigator.serial but with WebUSB, web-serial-polyfill drives USB CDC boards, in
+ * the worker too; with neither, the page says what is needed. Only where the
+ * worker cannot reach the ports does the page open them and hand their streams
+ * over (the bridge).
  */
 /// <reference types="w3c-web-serial" />
 
-import { MAXL_DEFAULT_BAUD, uartBytesPerSecond } from '../../core/net/link.ts';
+import type { SerialApi } from '../worker/serialPorts.ts';
 
-/** What navigator.serial offers, and what the polyfill offers in its place. */
-export interface SerialApi {
-  requestPort(options?: SerialPortRequestOptions): Promise<SerialPortLike>;
-  getPorts(): Promise<SerialPortLike[]>;
-}
-
-export interface SerialPortLike {
-  readonly readable: ReadableStream<Uint8Array> | null;
-  readonly writable: WritableStream<Uint8Array> | null;
-  open(options: SerialOptions): Promise<void>;
-  close(): Promise<void>;
-  getInfo(): Partial<SerialPortInfo>;
-}
+export { openPort, portKey, portLabel, type PortApi, type SerialApi, type SerialPortLike } from '../worker/serialPorts.ts';
 
 export type SerialSupport =
   | { kind: 'native'; api: SerialApi }
@@ -46,29 +37,6 @@ export function unsupportedReason(): string {
     return `${base}, and open the workbench over https or at http://localhost — this page (${location.origin}) is not a secure context, so the browser hides serial ports from it.`;
   }
   return `${base}. This browser offers neither (Firefox and Safari do not, nor do phones). The simulated machines work everywhere.`;
-}
-
-export function portLabel(port: SerialPortLike): string {
-  const info = port.getInfo();
-  if (info.usbVendorId === undefined) return 'serial port';
-  const hex = (n: number | undefined) => (n ?? 0).toString(16).padStart(4, '0');
-  return `USB ${hex(info.usbVendorId)}:${hex(info.usbProductId)}`;
-}
-
-export interface OpenedPort {
-  label: string;
-  readable: ReadableStream<Uint8Array>;
-  writable: WritableStream<Uint8Array>;
-  /** What reaches the board: its UART at the baud the port runs at (native-USB boards take more). */
-  bytesPerSecond: number;
-}
-
-/** Opens a port (if it is not open yet) and returns its streams, ready to transfer to the worker. */
-export async function openPort(port: SerialPortLike): Promise<OpenedPort> {
-  if (!port.readable || !port.writable) await port.open({ baudRate: MAXL_DEFAULT_BAUD });
-  const { readable, writable } = port;
-  if (!readable || !writable) throw new Error(`${portLabel(port)} opened without streams`);
-  return { label: portLabel(port), readable, writable, bytesPerSecond: uartBytesPerSecond(MAXL_DEFAULT_BAUD) };
 }
 
 /** Words for a failed requestPort/open that a user can act on. */

@@ -6,7 +6,8 @@
 import { WorkerClient } from './workerClient.ts';
 import { BOARDS, lastMachine, saveConfig, savedConfig } from './configStorage.ts';
 import { configProblems } from './configProblems.ts';
-import { connectErrorWords, openPort, serialSupport, type SerialPortLike, type SerialSupport } from './serialConnect.ts';
+import { connectErrorWords, openPort, portKey, serialSupport, type PortApi, type SerialPortLike, type SerialSupport } from './serialConnect.ts';
+import type { SerialAccess } from '../worker/workerSerial.ts';
 import {
   DEFAULT_PRESET,
   type Command,
@@ -56,8 +57,18 @@ export class WorkbenchStore {
   private pendingPreview: PreviewData | null = null;
   private nextCheck = 1;
   private localLogId = -1;
+  /** Which serial APIs the worker reaches itself (its answer to 'serial-access'). */
+  private readonly workerAccess: Promise<SerialAccess>;
 
   constructor() {
+    this.workerAccess = new Promise((resolve) => {
+      const off = this.client.on((e) => {
+        if (e.type !== 'serial-access') return;
+        off();
+        resolve(e.access);
+      });
+    });
+    this.send({ type: 'serial-access' });
     this.client.on((e) => {
       switch (e.type) {
         case 'snapshot':
@@ -144,8 +155,20 @@ export class WorkbenchStore {
     await this.connectPort(port);
   }
 
+  /**
+   * The worker opens the port the page was granted, if its own navigator reaches
+   * it (Chrome: Web Serial and WebUSB are both in dedicated workers), and owns its
+   * streams. Otherwise the bridge: the page opens it and transfers the streams.
+   */
   private async connectPort(port: SerialPortLike): Promise<void> {
+    const serial = this.serial;
+    if (!serial || serial.kind === 'none') return;
+    const api: PortApi = serial.kind === 'native' ? 'serial' : 'usb';
     try {
+      if ((await this.workerAccess)[api]) {
+        this.send({ type: 'open-port', api, port: await portKey(port, serial.api) });
+        return;
+      }
       const opened = await openPort(port);
       this.send({ type: 'add-port', label: opened.label, readable: opened.readable, writable: opened.writable, bytesPerSecond: opened.bytesPerSecond }, [
         opened.readable as unknown as Transferable,

@@ -4,6 +4,7 @@
  * animation frame, never twice before the last one came back.
  */
 import type { Command, Snapshot, WorkerEvent } from '../worker/protocol.ts';
+import { sendWorkerTestHook } from '../worker/workerTestHook.ts';
 
 export type EventHandler = (e: WorkerEvent) => void;
 
@@ -17,6 +18,8 @@ export class WorkerClient {
 
   constructor() {
     this.worker = new Worker(new URL('../worker/maxlWorker.ts', import.meta.url), { type: 'module', name: 'maxl' });
+    // A test's hook into the worker goes first, before any command (dev server only: docs/test-hooks.md).
+    if (import.meta.env.DEV) sendWorkerTestHook(this.worker);
     this.worker.onmessage = (m: MessageEvent<WorkerEvent>) => this.dispatch(m.data);
     this.worker.onerror = (e) => {
       this.dispatch({ type: 'log', entry: { id: -1, at: Date.now(), level: 'error', code: 'WORKER', message: `The MAXL worker failed to start or crashed: ${e.message}. Reload the page.` } });

@@ -14,6 +14,8 @@ import type { MaxlConfig, ReaderKindName, TransformConfig } from '../../core/ind
 import type { LightpaintCommand, LightpaintEvent } from '../tools/lightpaint/protocol.ts';
 import type { FileCommand, FileEvent } from '../tools/plotter/files/protocol.ts';
 import type { PlotterCommand, PlotterEvent } from '../tools/plotter/protocol.ts';
+import type { PortApi, PortKey } from './serialPorts.ts';
+import type { SerialAccess } from './workerSerial.ts';
 
 // ---------------------------------------------------------------------------
 // Shared shapes
@@ -218,6 +220,14 @@ export type ToolEvent = PlotterEvent | FileEvent | LightpaintEvent | CaptureEven
 export type Command =
   | ToolCommand
   | { type: 'use-preset'; presetId: string; config?: MachineConfig }
+  /** Which serial APIs the worker can reach itself: answered with 'serial-access'. */
+  | { type: 'serial-access' }
+  /** A port the page was granted: the worker finds it among its own granted ports, opens it and owns its streams. */
+  | { type: 'open-port'; api: PortApi; port: PortKey }
+  /**
+   * The bridge, for browsers whose workers reach no serial port: the page opened
+   * the port and transfers its streams (every byte then crosses the page).
+   */
   | {
       type: 'add-port';
       label: string;
@@ -251,6 +261,7 @@ export type WorkerEvent =
   | Snapshot
   | { type: 'machine'; state: MachineState }
   | { type: 'config-check'; check: ConfigCheck }
+  | { type: 'serial-access'; access: SerialAccess }
   | { type: 'log'; entry: LogEntry }
   | { type: 'jog-stopped'; report: JogStopReport }
   /**

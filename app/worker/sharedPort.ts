@@ -7,7 +7,10 @@
  *
  * The port's bytes go to the current session only; a closed session's writes are
  * dropped. If the port itself ends or fails, the current session sees its
- * readable fail (and reports the link lost), and so does every later one.
+ * readable fail (and reports the link lost), and so does every later one, and
+ * `onBroken` says why in words. `close()` cancels the reading, lets go of both
+ * streams and closes what lies underneath (the serial port, for a port the
+ * worker opened), so that the port can be opened again.
  */
 import type { Link } from '../../core/index.ts';
 
@@ -18,6 +21,10 @@ export class SharedPort {
   private current: ReadableStreamDefaultController<Uint8Array> | null = null;
   private failure: Error | null = null;
   private readonly closeUnderlying: (() => Promise<void>) | undefined;
+  private reader: ReadableStreamDefaultReader<Uint8Array> | null = null;
+  private closing = false;
+  /** Called once if the port ends or fails by itself (not on close()), with why. */
+  onBroken: ((why: string) => void) | null = null;
 
   constructor(port: Link) {
     this.label = port.label ?? 'port';
@@ -65,8 +72,15 @@ export class SharedPort {
 
   /** Closes the port for good. */
   async close(): Promise<void> {
+    this.closing = true;
     this.endCurrent();
     this.failure ??= new Error('the port was closed');
+    try {
+      await this.reader?.cancel();
+      this.reader?.releaseLock();
+    } catch {
+      // the port failed already
+    }
     try {
       this.writer.releaseLock();
     } catch {
@@ -87,16 +101,18 @@ export class SharedPort {
 
   private async pump(readable: ReadableStream<Uint8Array>): Promise<void> {
     const reader = readable.getReader();
+    this.reader = reader;
     try {
       for (;;) {
         const { value, done } = await reader.read();
         if (done) break;
         if (value && this.current) this.current.enqueue(value);
       }
-      this.failure = new Error('the port closed (unplugged?)');
+      this.failure ??= new Error('the port closed (unplugged?)');
     } catch (err) {
-      this.failure = new Error(`the port failed: ${(err as Error).message}`);
+      this.failure ??= new Error(`the port failed: ${(err as Error).message ?? String(err)}`);
     }
+    if (!this.closing) this.onBroken?.(this.failure.message);
     const c = this.current;
     this.current = null;
     c?.error(this.failure);

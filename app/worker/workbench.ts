@@ -27,6 +27,9 @@ import type {
   WorkerEvent,
 } from './protocol.ts';
 import { SharedPort } from './sharedPort.ts';
+import { BRIDGED_STREAMER, realBoardStreamer } from './realBoardStreamer.ts';
+import { findGrantedPort, keyLabel, openErrorWords, openPort, portLabel, type OpenedPort, type PortApi, type PortKey, type SerialPortLike } from './serialPorts.ts';
+import { grantedPorts, serialAccess, watchDisconnects } from './workerSerial.ts';
 import { decimate, overviewTolerance } from './previewDecimation.ts';
 import { presetConfig, presetViews, startSimulatedMachine, truthOf } from './simulatedMachines.ts';
 import { SnapshotBuilder } from './snapshotBuilder.ts';
@@ -37,23 +40,14 @@ interface DeviceConnection {
   id: string;
   port: SharedPort;
   simulated: boolean;
+  /** Its bytes cross the page (a port the page opened, for a browser whose workers reach no port). */
+  bridged: boolean;
+  /** The serial port this worker opened for it, if it did. */
+  serialPort: SerialPortLike | null;
   /** What it said in its last hello. */
   info: DeviceInfo | null;
 }
 
-/**
- * Streaming margins for real boards, in real time in a browser worker. The core's
- * defaults (1 ms of margin) suit exact timers. Here the worker's timers fire late
- * whenever it is busy, and every byte to and from a board crosses the page's main
- * thread (the port's streams belong to the page, which transferred them here), so
- * a long task on the page (a software-rendered WebGL frame, a layout) holds the
- * stream back: 30 ms of margin starved the boards in 3 of 5 e2e runs, 80 ms in
- * none of 5. So: 80 ms on the lead and before a start from rest. The cost: a
- * hold-to-jog release brakes about 2·RTT + 80 ms later on real boards. A simulated
- * machine runs on paced virtual time (PacedScheduler), where every timer fires at
- * its exact time and no byte crosses the page: it keeps the core's defaults.
- */
-const REAL_TIME_STREAMER = { minLead_us: 80_000, leadMargin_us: 80_000, startMargin_us: 80_000 };
 /** Clock sync before streaming starts. */
 const SYNC_BEFORE_START_US = 2_000_000;
 
@@ -80,6 +74,9 @@ export class Workbench {
   private nextLogId = 1;
   private lastDeviceReport = 0;
   private devicesChanged = true;
+  private watchingDisconnects = false;
+  /** Ports open one after another, in the order the page asked (so devices keep that order). */
+  private openingPorts: Promise<void> = Promise.resolve();
   /** Restarts run one after another. */
   private restarting: Promise<void> = Promise.resolve();
   private readonly snapshots = new SnapshotBuilder();
@@ -123,8 +120,21 @@ export class Workbench {
       case 'use-preset':
         void this.usePreset(cmd.presetId, cmd.config);
         return;
+      case 'serial-access':
+        this.post({ type: 'serial-access', access: serialAccess() });
+        return;
+      case 'open-port': {
+        const { api, port } = cmd;
+        this.openingPorts = this.openingPorts.then(() => this.openGrantedPort(api, port));
+        return;
+      }
       case 'add-port':
-        void this.addPort(cmd.label, cmd.readable, cmd.writable, cmd.bytesPerSecond);
+        this.log(
+          'warning',
+          'BRIDGE',
+          `${cmd.label}: this browser's workers cannot reach serial ports, so its bytes cross the page, and a busy page can hold them back: the machine streams with ${(BRIDGED_STREAMER.leadMargin_us ?? 0) / 1000} ms of margin.`,
+        );
+        void this.addPort({ label: cmd.label, readable: cmd.readable, writable: cmd.writable, bytesPerSecond: cmd.bytesPerSecond }, null);
         return;
       case 'remove-device':
         void this.removeDevice(cmd.id);
@@ -208,7 +218,7 @@ export class Workbench {
       const sim = await startSimulatedMachine(id, this.scheduler, (err) => this.log('error', 'SIM', `The simulated machine failed: ${errorWords(err).message}`));
       this.sim = sim;
       for (const [name, link] of Object.entries(sim.links)) {
-        this.devices.push({ id: `sim-${this.nextDeviceId++}`, port: new SharedPort({ ...link, label: link.label ?? `sim:${name}` }), simulated: true, info: null });
+        this.devices.push({ id: `sim-${this.nextDeviceId++}`, port: new SharedPort({ ...link, label: link.label ?? `sim:${name}` }), simulated: true, bridged: false, serialPort: null, info: null });
       }
       this.log('info', 'SIM', `Simulated ${id}: ${Object.keys(sim.links).join(', ')}.`);
     } catch (err) {
@@ -223,7 +233,42 @@ export class Workbench {
     await this.restart();
   }
 
-  private async addPort(label: string, readable: ReadableStream<Uint8Array>, writable: WritableStream<Uint8Array>, bytesPerSecond: number): Promise<void> {
+  /**
+   * A port granted to the page: found among this worker's own granted ports,
+   * opened here, its streams owned here (no byte crosses the page).
+   */
+  private async openGrantedPort(api: PortApi, key: PortKey): Promise<void> {
+    const label = keyLabel(key);
+    if (!this.watchingDisconnects) {
+      this.watchingDisconnects = true;
+      watchDisconnects((port, info) => this.portDisappeared(port, info));
+    }
+    let serialPort: SerialPortLike;
+    let opened: OpenedPort;
+    try {
+      serialPort = await findGrantedPort(await grantedPorts(api), key);
+      opened = await openPort(serialPort);
+    } catch (err) {
+      this.log('error', 'CONNECT', `Could not connect ${label} in the worker: ${openErrorWords(err, label)} Nothing changed: the machine runs as before.`);
+      return;
+    }
+    await this.addPort(opened, serialPort);
+  }
+
+  /** A port vanished (unplugged, or the board reset its USB): say what happens next. */
+  private portDisappeared(port: SerialPortLike | null, info: { usbVendorId?: number; usbProductId?: number }): void {
+    const device = port ? this.devices.find((d) => d.serialPort === port) : undefined;
+    const label = device?.port.label ?? portLabel(info);
+    if (port && !device) return; // not one of the machine's
+    this.log(
+      'warning',
+      'PORT_GONE',
+      `${label} disappeared (unplugged, or the board reset its USB). ${device ? 'Its timing stops, so every device brakes to rest on the path; plug it back in and press Add device (or reload the page), then Re-arm.' : 'If it was one of the boards, they brake to rest on the path.'}`,
+    );
+  }
+
+  private async addPort(link: OpenedPort, serialPort: SerialPortLike | null): Promise<void> {
+    const { label, readable, writable, bytesPerSecond } = link;
     if (this.sim) {
       // A real board joins: the simulated machine goes, the configuration stays for editing.
       await this.closeDevices();
@@ -231,8 +276,12 @@ export class Workbench {
       this.log('info', 'CONNECT', 'Left the simulated machine for real boards; the configuration is kept: check its subscriptions.');
     }
     if (this.scheduler instanceof PacedScheduler) this.useScheduler(new RealScheduler());
-    this.devices.push({ id: `port-${this.nextDeviceId++}`, port: new SharedPort({ readable, writable, label, bytesPerSecond }), simulated: false, info: null });
-    this.log('info', 'CONNECT', `Connected ${label}.`);
+    const close = serialPort ? () => serialPort.close() : undefined;
+    const port = new SharedPort({ readable, writable, label, bytesPerSecond, close });
+    port.onBroken = (why) =>
+      this.log('error', 'PORT_LOST', `${label}: ${why}. Its session is lost: the machine brakes to rest on the path. Plug the board back in and press Add device (or reload the page).`);
+    this.devices.push({ id: `port-${this.nextDeviceId++}`, port, simulated: false, bridged: serialPort === null, serialPort, info: null });
+    this.log('info', 'CONNECT', `Connected ${label}${serialPort ? ' (the worker owns its streams)' : ' (through the page)'}.`);
     this.devicesChanged = true;
     await this.restart();
   }
@@ -291,9 +340,13 @@ export class Workbench {
     const axes = this.config.motionAxes?.length ?? 0;
     if (this.position.length !== axes) this.position = new Array<number>(axes).fill(0);
     if (this.origin.length !== axes) this.origin = new Array<number>(axes).fill(0);
+    // Simulated machines run on paced virtual time, where every timer fires on time
+    // and no byte waits on a browser: the core's default margins. Real boards run
+    // on the wall clock: margins for their links (realBoardStreamer.ts).
+    const streamer = this.scheduler instanceof PacedScheduler ? undefined : realBoardStreamer(this.devices.map((d) => ({ bytesPerSecond: d.port.bytesPerSecond, bridged: d.bridged })));
     let maxl: Maxl;
     try {
-      maxl = createMAXL(this.config, { links: this.devices.map((d) => d.port.session()), initialPosition: this.position, scheduler: this.scheduler, streamer: this.scheduler instanceof PacedScheduler ? undefined : REAL_TIME_STREAMER, syncBeforeStart_us: SYNC_BEFORE_START_US });
+      maxl = createMAXL(this.config, { links: this.devices.map((d) => d.port.session()), initialPosition: this.position, scheduler: this.scheduler, streamer, syncBeforeStart_us: SYNC_BEFORE_START_US });
     } catch (err) {
       const words = errorWords(err);
       this.setPhase('not-ready', words.message);
@@ -310,6 +363,9 @@ export class Workbench {
       this.learnDevices(maxl);
       this.setPhase('ready', '');
       this.log('info', 'READY', `Ready: ${this.knownDevices().map((d) => d.name).join(', ')} in sync.`);
+      if (streamer?.leadMargin_us !== undefined) {
+        this.log('info', 'MARGIN', `Real boards stream ${(streamer.leadMargin_us / 1000).toFixed(2)} ms of margin over twice the round trip (now ${(maxl.lead_us / 1000).toFixed(1)} ms of motion ahead).`);
+      }
       const limit = maxl.feedLimit;
       // Worth saying where it shapes real jobs (a UART's 25 kB/s: ~1.5 ms), not for native USB's ~30 µs.
       if (limit?.device && limit.minSegment_us >= 100) {

@@ -18,7 +18,8 @@ import { encodeFrame, FrameReceiver, type RawPacket } from './frame.ts';
 import type { Link } from './link.ts';
 import type { SendResult, StreamDevice } from './streamDevice.ts';
 import { decodePayload, type Message, type MessageOf, WireError } from './messages.ts';
-import { MessageType, NackReason, nameOf, NO_SESSION_DETAIL, PROTOCOL_VERSION, ReaderKind, type ReaderKindName } from './protocol.ts';
+import { MessageType, NackReason, nameOf, NO_SESSION_DETAIL, PROTOCOL_VERSION, ReaderKind, type NackReasonName, type ReaderKindName } from './protocol.ts';
+import { silenceVerdict } from './silenceCheck.ts';
 
 export interface ReaderInfo {
   index: number;
@@ -487,18 +488,24 @@ export class DeviceSession implements StreamDevice {
     tick();
   }
 
-  /** Checks now and then that the device still talks (any frame will do: acks, pongs, status). */
+  /** Checks now and then that the device still talks (any frame will do: acks, pongs, status); silenceCheck.ts. */
   private scheduleHealth(): void {
+    const period = this.options.silence_us / 4;
+    let due = this.scheduler.now() + period;
+    let heldBack = false;
     const check = () => {
       if (this.state !== 'open') return;
       const now = this.scheduler.now();
-      if (now - this.lastHeard > this.options.silence_us) {
+      const verdict = silenceVerdict({ now_us: now, due_us: due, lastHeard_us: this.lastHeard, silence_us: this.options.silence_us, previousHeldBack: heldBack });
+      if (verdict === 'lost') {
         this.lose(`no frame from the device for ${((now - this.lastHeard) / 1000).toFixed(0)} ms`);
         return;
       }
-      this.timers.silence = this.scheduler.after(this.options.silence_us / 4, check);
+      heldBack = verdict === 'held-back';
+      due = now + period;
+      this.timers.silence = this.scheduler.after(period, check);
     };
-    this.timers.silence = this.scheduler.after(this.options.silence_us / 4, check);
+    this.timers.silence = this.scheduler.after(period, check);
   }
 
   /**

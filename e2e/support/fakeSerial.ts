@@ -1,47 +1,54 @@
 /**
- * A fake navigator.serial for the WebSerial spec, loaded into the page by an init
- * script. Each port it grants is one device of a simulated machine (real firmware
- * in wasm, in real time, in a worker of its own: fakeSerialWorker.ts), and its
- * readable/writable are that device's link: so the workbench's own connect code
- * (requestPort, open, getInfo, getPorts, transferring the streams to the MAXL
- * worker) runs unchanged.
+ * A fake navigator.serial for the WebSerial spec, the page's half, loaded by an
+ * init script. The ports it grants are the devices of a simulated machine (real
+ * firmware in wasm) running in a worker of their own (fakeSerialWorker.ts), which
+ * also keeps which ports are granted. The page's half only asks for ports
+ * (requestPort, getPorts, getInfo): as in a real browser, the MAXL worker then
+ * finds them through its own navigator.serial, the fake's other half
+ * (fakeSerialInWorker.ts, loaded there through the worker test hook), opens them
+ * and owns their streams. So the workbench's connect code runs unchanged, and no
+ * byte of the boards crosses the page.
+ *
+ * With `serialInWorkers: false` the fake plays a browser whose workers reach no
+ * serial port (navigator.serial and navigator.usb absent there): the page then
+ * opens the port itself and bridges its streams to the worker, as the workbench
+ * does in such a browser.
  *
  * Ports granted survive a reload (sessionStorage), as a browser's permissions do.
  */
+import { rpcClient } from './fakeSerialRpc.ts';
+import { streamsOverChannel } from './fakePortStreams.ts';
+import type { FakePortInfo } from './fakeSerialWorker.ts';
+import type { BoardTraffic } from './fakeBoardLink.ts';
+
 const GRANTED_KEY = 'fakeSerial.granted';
 
-interface WorkerPort {
-  name: string;
-  readable: ReadableStream<Uint8Array>;
-  writable: WritableStream<Uint8Array>;
-}
-
 export interface FakeSerialControl {
-  /** Device names in the order requestPort() hands them out. */
-  devices: string[];
-  /** requestPort() calls so far. */
-  requests: number;
-  /** Ports opened so far. */
-  opened: string[];
-  /** Ground truth: each simulated motor's step count now. */
-  motorSteps(): Promise<Record<string, number>>;
+  /**
+   * Ground truth: each simulated motor's step count now, the devices whose ports
+   * were opened, requestPort() calls, and for each opened board the chunks that
+   * reached it and how many came after their time (fakeBoardLink.ts).
+   */
+  truth(): Promise<{ steps: Record<string, number>; opened: string[]; requests: number; traffic: Record<string, BoardTraffic> }>;
 }
 
-class FakePort {
+type Call = ReturnType<typeof rpcClient>;
+
+/** A port as the page sees it: its ids; streams only if the page opens it (the bridge). */
+class FakePagePort {
   readable: ReadableStream<Uint8Array> | null = null;
   writable: WritableStream<Uint8Array> | null = null;
   constructor(
-    private readonly link: WorkerPort,
-    private readonly index: number,
-    private readonly control: FakeSerialControl,
+    readonly info: FakePortInfo,
+    private readonly call: Call,
   ) {}
 
   async open(options: { baudRate: number }): Promise<void> {
     if (!(options.baudRate > 0)) throw new TypeError('baudRate is required');
     if (this.readable) throw new DOMException('The port is already open.', 'InvalidStateError');
-    this.readable = this.link.readable;
-    this.writable = this.link.writable;
-    this.control.opened.push(this.link.name);
+    const streams = streamsOverChannel(await this.call<MessagePort>('open', this.info.index));
+    this.readable = streams.readable;
+    this.writable = streams.writable;
   }
 
   async close(): Promise<void> {
@@ -50,46 +57,29 @@ class FakePort {
   }
 
   getInfo(): { usbVendorId: number; usbProductId: number } {
-    return { usbVendorId: 0x2341, usbProductId: 0x0043 + this.index };
+    return { usbVendorId: this.info.usbVendorId, usbProductId: this.info.usbProductId };
   }
 }
 
-export async function installFakeSerial(presetId: string): Promise<FakeSerialControl> {
-  const worker = new Worker(new URL('./fakeSerialWorker.ts', import.meta.url), { type: 'module', name: 'fake-boards' });
-  const truths = new Map<number, (steps: Record<string, number>) => void>();
-  let nextTruth = 1;
-  const links = await new Promise<WorkerPort[]>((resolve) => {
-    worker.onmessage = (m: MessageEvent) => {
-      if (m.data.type === 'ready') resolve(m.data.ports as WorkerPort[]);
-      else if (m.data.type === 'truth') truths.get(m.data.id)?.(m.data.steps);
-    };
-    worker.postMessage({ type: 'start', presetId });
-  });
-  const control: FakeSerialControl = {
-    devices: links.map((l) => l.name),
-    requests: 0,
-    opened: [],
-    motorSteps: () =>
-      new Promise((resolve) => {
-        const id = nextTruth++;
-        truths.set(id, resolve);
-        worker.postMessage({ type: 'truth', id });
-      }),
-  };
-  const ports = links.map((link, i) => new FakePort(link, i, control));
-  const granted = (): number => Number(sessionStorage.getItem(GRANTED_KEY) ?? '0');
+/** Starts the fake boards and puts the page's half of the fake on navigator.serial; `maxlWorker` is the channel end the worker test hook carries. */
+export async function installFakeSerial(presetId: string, maxlWorker: MessagePort, options: { serialInWorkers: boolean }): Promise<FakeSerialControl> {
+  const boards = new Worker(new URL('./fakeSerialWorker.ts', import.meta.url), { type: 'module', name: 'fake-boards' });
+  const granted = Number(sessionStorage.getItem(GRANTED_KEY) ?? '0');
+  boards.postMessage({ type: 'start', presetId, granted, serialInWorkers: options.serialInWorkers, maxlWorker }, [maxlWorker]);
+  const call = rpcClient(boards);
+  // One object per port, as a browser keeps them: getPorts() returns the same ones requestPort() did.
+  const ports = new Map<number, FakePagePort>();
+  const portOf = (info: FakePortInfo) => ports.get(info.index) ?? ports.set(info.index, new FakePagePort(info, call)).get(info.index)!;
   const serial = {
-    async requestPort(): Promise<FakePort> {
-      control.requests++;
-      const n = granted();
-      if (n >= ports.length) throw new DOMException('No port selected by the user.', 'NotFoundError');
-      sessionStorage.setItem(GRANTED_KEY, String(n + 1));
-      return ports[n];
+    async requestPort(): Promise<FakePagePort> {
+      const answer = await call<{ port: FakePortInfo; granted: number }>('requestPort');
+      sessionStorage.setItem(GRANTED_KEY, String(answer.granted));
+      return portOf(answer.port);
     },
-    async getPorts(): Promise<FakePort[]> {
-      return ports.slice(0, granted());
+    async getPorts(): Promise<FakePagePort[]> {
+      return (await call<FakePortInfo[]>('getPorts')).map(portOf);
     },
   };
   Object.defineProperty(navigator, 'serial', { value: serial, configurable: true });
-  return control;
+  return { truth: () => call('truth') };
 }

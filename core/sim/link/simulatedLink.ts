@@ -71,7 +71,13 @@ export class SimulatedLink {
       },
       cutAt,
     );
-    const readable = new ReadableStream<Uint8Array>({ start: (c) => (this.readableController = c) });
+    const readable = new ReadableStream<Uint8Array>({
+      start: (c) => (this.readableController = c),
+      // A reader that cancels (a port closed by the workbench) ends the link: nothing is enqueued after.
+      cancel: () => {
+        this.closed = true;
+      },
+    });
     const writable = new WritableStream<Uint8Array>({
       write: (chunk) => {
         if (this.closed) throw new SimError('LINK_CLOSED', `${label}: write after the link was closed`);
