@@ -15,11 +15,11 @@ const LOCKED_WIDTH = 6;
 const LOCKED_HALO = 10;
 
 export class ToolOverlay {
-  private readonly g: CanvasRenderingContext2D;
+  private readonly g: OffscreenCanvasRenderingContext2D;
   private readonly v = new THREE.Vector3();
 
-  constructor(private readonly canvas: HTMLCanvasElement) {
-    this.g = canvas.getContext('2d') as CanvasRenderingContext2D;
+  constructor(private readonly canvas: OffscreenCanvas) {
+    this.g = canvas.getContext('2d') as OffscreenCanvasRenderingContext2D;
   }
 
   resize(width: number, height: number, pixelRatio: number): void {

@@ -9,10 +9,15 @@
  * up with: after each draw, the time until the next frame says what a draw costs,
  * and a costly scene (a million segments on a software renderer) is redrawn at most
  * every few such costs while it streams. Camera moves always draw at once.
+ *
+ * It runs in the view worker (viewWorker.ts), on the page's canvases handed over
+ * as OffscreenCanvas, with OrbitControls on an ElementProxy that the page's input
+ * events are replayed on.
  */
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import type { Snapshot } from '../worker/protocol.ts';
+import type { ElementProxy } from './elementProxy.ts';
+import type { CameraMode, CameraPose, ViewSnapshot, ViewStats } from './viewProtocol.ts';
 import { AppendOnlyPath } from './appendOnlyPath.ts';
 import { JobPreview } from './jobPreview.ts';
 import { QueueLines } from './queueLines.ts';
@@ -20,7 +25,12 @@ import { SCENE_COLORS, STATE_COLORS } from './colors.ts';
 import { ToolOverlay } from './toolOverlay.ts';
 import { WorkArea } from './workArea.ts';
 
-export type CameraMode = 'top' | '3d';
+export type { CameraMode };
+
+/** ms: at most 20 draws a second of streaming content on a software renderer. */
+const SOFTWARE_MIN_DRAW_INTERVAL_MS = 50;
+/** ms: the tool's overlay at most 30 times a second there. */
+const SOFTWARE_MIN_OVERLAY_INTERVAL_MS = 33;
 
 export class TrajectoryView {
   readonly renderer: THREE.WebGLRenderer;
@@ -33,14 +43,20 @@ export class TrajectoryView {
   private readonly overlay: ToolOverlay;
   private readonly originPosition = new THREE.Vector3();
   private readonly workArea = new WorkArea();
-  private readonly resizeObserver: ResizeObserver;
   private runtimeId = -1;
   private dirty = true;
   private mode: CameraMode = 'top';
   private frameHandle = 0;
   /** ms a scene draw is allowed to wait for, after the last one, while content streams. */
   private drawInterval = 0;
+  /** ms: the least time between draws of streaming content (a software renderer's floor). */
+  private readonly minDrawInterval: number;
   private lastDraw = -Infinity;
+  private overlayHandle = 0;
+  private lastOverlay = -Infinity;
+  /** ms: the least time between overlay draws while the tool moves (a software renderer's floor). */
+  private readonly minOverlayInterval: number;
+  private urgent = false;
   private measuring = false;
   private width = 1;
   private height = 1;
@@ -49,15 +65,26 @@ export class TrajectoryView {
   readonly toolPosition = new THREE.Vector3();
 
   constructor(
-    private readonly canvas: HTMLCanvasElement,
-    overlayCanvas: HTMLCanvasElement,
+    canvas: OffscreenCanvas,
+    overlayCanvas: OffscreenCanvas,
+    private readonly element: ElementProxy,
+    devicePixelRatio: number,
   ) {
     this.overlay = new ToolOverlay(overlayCanvas);
     this.renderer = new THREE.WebGLRenderer({ canvas, antialias: false });
     // A software renderer (no GPU: SwiftShader, llvmpipe) draws every pixel on the CPU,
     // and with software compositing the page waits for each frame: draw it at 3/4 of
     // the CSS pixels there. A GPU gets the display's full resolution.
-    this.renderer.setPixelRatio(softwareRenderer(this.renderer.getContext()) ? 0.75 : Math.min(2, window.devicePixelRatio));
+    const software = softwareRenderer(this.renderer.getContext());
+    this.renderer.setPixelRatio(software ? 0.75 : Math.min(2, devicePixelRatio));
+    // In a worker, a draw no longer holds up the page, so nothing paces it any more but
+    // this: a software renderer spends CPU time on every pixel of every draw (and on
+    // reading it back), which the core's worker and the page share on a small machine.
+    // While a job streams the paths change every frame; they are redrawn at most 20
+    // times a second there (the tool and the locked-ahead path, on the overlay, still
+    // move every frame; camera moves still draw at once).
+    this.minDrawInterval = software ? SOFTWARE_MIN_DRAW_INTERVAL_MS : 0;
+    this.minOverlayInterval = software ? SOFTWARE_MIN_OVERLAY_INTERVAL_MS : 0;
     this.scene.background = new THREE.Color(SCENE_COLORS.background);
     this.scene.add(
       this.workArea.group,
@@ -66,15 +93,13 @@ export class TrajectoryView {
       this.locked.transmittedLines,
       this.queue.lines,
     );
-    this.controls = new OrbitControls(this.camera, canvas);
+    this.controls = new OrbitControls(this.camera, element as unknown as HTMLElement);
     this.controls.enableDamping = false;
     this.controls.screenSpacePanning = true;
     this.controls.addEventListener('change', () => {
       this.updateScale();
       this.requestRender(true);
     });
-    this.resizeObserver = new ResizeObserver(() => this.resize());
-    this.resizeObserver.observe(canvas.parentElement ?? canvas);
     this.setMode('top');
     this.resize();
   }
@@ -83,7 +108,7 @@ export class TrajectoryView {
     return this.mode;
   }
 
-  get stats() {
+  get stats(): ViewStats {
     return {
       lockedSegments: this.locked.segments,
       historicalSegments: this.locked.historicalSegments,
@@ -95,7 +120,7 @@ export class TrajectoryView {
   }
 
   /** Where the camera is and what it looks at, mm (for the page's tests and benches). */
-  get cameraPose(): { position: number[]; target: number[]; up: number[] } {
+  get cameraPose(): CameraPose {
     return { position: this.camera.position.toArray(), target: this.controls.target.toArray(), up: this.camera.up.toArray() };
   }
 
@@ -116,7 +141,7 @@ export class TrajectoryView {
     this.drawOverlay();
   }
 
-  applySnapshot(s: Snapshot): void {
+  applySnapshot(s: ViewSnapshot): void {
     if (s.runtimeId !== this.runtimeId) {
       this.runtimeId = s.runtimeId;
       this.locked.clear();
@@ -126,10 +151,11 @@ export class TrajectoryView {
     if (s.locked.length > 0) this.locked.append(s.lockedFrom, s.locked);
     this.locked.setHistorical(s.historical);
     if (s.queue && s.queueStates) this.queue.set(s.queue, s.queueStates);
-    this.preview.setFed(s.job && s.jobFed > 0 ? s.jobFed : 0);
+    this.preview.setFed(s.jobFed);
     const p = s.position;
+    const moved = this.toolPosition.x !== (p[0] ?? 0) || this.toolPosition.y !== (p[1] ?? 0) || this.toolPosition.z !== (p[2] ?? 0);
     this.toolPosition.set(p[0] ?? 0, p[1] ?? 0, p[2] ?? 0);
-    this.drawOverlay();
+    if (moved || s.locked.length > 0 || historical !== this.locked.historicalSegments) this.requestOverlay();
     if (s.locked.length > 0 || s.queue || historical !== this.locked.historicalSegments) this.requestRender();
   }
 
@@ -187,13 +213,16 @@ export class TrajectoryView {
    */
   requestRender(now = false): void {
     this.dirty = true;
+    // A camera move while a streaming draw waits out its interval takes the next frame.
+    if (now) this.urgent = true;
     if (this.frameHandle) return;
     const tick = () => {
       this.frameHandle = 0;
-      if (!now && performance.now() - this.lastDraw < this.drawInterval) {
+      if (!this.urgent && performance.now() - this.lastDraw < this.drawInterval) {
         this.frameHandle = requestAnimationFrame(tick);
         return;
       }
+      this.urgent = false;
       this.renderNow();
     };
     this.frameHandle = requestAnimationFrame(tick);
@@ -213,7 +242,7 @@ export class TrajectoryView {
       requestAnimationFrame(() => {
         this.measuring = false;
         const cost = performance.now() - start;
-        this.drawInterval = cost > 40 ? Math.min(3000, 4 * cost) : 0;
+        this.drawInterval = Math.max(this.minDrawInterval, cost > 40 ? Math.min(3000, 4 * cost) : 0);
       });
     }
   }
@@ -225,21 +254,40 @@ export class TrajectoryView {
     this.preview.setScale(this.height / Math.max(visibleHeight, 1e-9));
   }
 
+  /**
+   * Draws the overlay (the tool, the locked-ahead path) at the next animation frame,
+   * once however many snapshots came, and on a software renderer at most 30 times a
+   * second: each overlay frame is composited in software too.
+   */
+  private requestOverlay(): void {
+    if (this.overlayHandle) return;
+    const tick = () => {
+      this.overlayHandle = 0;
+      if (performance.now() - this.lastOverlay < this.minOverlayInterval) {
+        this.overlayHandle = requestAnimationFrame(tick);
+        return;
+      }
+      this.drawOverlay();
+    };
+    this.overlayHandle = requestAnimationFrame(tick);
+  }
+
   private drawOverlay(): void {
+    this.lastOverlay = performance.now();
     this.overlay.draw(this.camera, this.toolPosition, this.originPosition, this.locked.transmittedVertices(), this.width, this.height);
   }
 
   dispose(): void {
     cancelAnimationFrame(this.frameHandle);
-    this.resizeObserver.disconnect();
+    cancelAnimationFrame(this.overlayHandle);
     this.controls.dispose();
     this.renderer.dispose();
   }
 
-  private resize(): void {
-    const host = this.canvas.parentElement ?? this.canvas;
-    const width = Math.max(1, host.clientWidth);
-    const height = Math.max(1, host.clientHeight);
+  /** The canvas's CSS size (the element proxy's), px: the drawing buffer follows at the pixel ratio. */
+  resize(): void {
+    const width = Math.max(1, this.element.clientWidth);
+    const height = Math.max(1, this.element.clientHeight);
     this.renderer.setSize(width, height, false);
     this.width = width;
     this.height = height;
