@@ -20,6 +20,19 @@ async function rejection(p: Promise<unknown>): Promise<MaxlError> {
   return err as MaxlError;
 }
 
+/**
+ * A queue of capacity 2 with no room: two moves with a right-angle corner between
+ * them, so the first one's plan is final (it ends at the corner's speed whatever
+ * follows) and the lookahead does not ask for more path (TrajectoryQueue.hasRoom).
+ */
+async function fullQueue() {
+  const maxl = createMAXL(config(2));
+  await maxl.addSegmentToQueue({ endPosition: [10, 0] });
+  await maxl.addSegmentToQueue({ endPosition: [10, 10] });
+  expect(maxl.queue.hasRoom()).toBe(false);
+  return maxl;
+}
+
 /** Lets pending promise callbacks run. */
 const turn = () => new Promise((resolve) => setTimeout(resolve, 0));
 
@@ -52,8 +65,7 @@ describe('addSegmentToQueue with an AbortSignal', () => {
   });
 
   it('an aborted waiter leaves the line: the one behind it gets the next slot, in order', async () => {
-    const maxl = createMAXL(config(1));
-    await maxl.addSegmentToQueue({ endPosition: [10, 0] });
+    const maxl = await fullQueue();
     const first = new AbortController();
     const a = maxl.addSegmentToQueue({ endPosition: [20, 0] }, { signal: first.signal });
     const b = maxl.addSegmentToQueue({ endPosition: [30, 0] }, { signal: new AbortController().signal });
@@ -61,19 +73,19 @@ describe('addSegmentToQueue with an AbortSignal', () => {
     expect((await rejection(a)).code).toBe('ABORTED');
     queueOf(maxl).transmitNext(0);
     const receipt: MoveReceipt = await b;
+    expect(maxl.queue.get(receipt.segmentIds[0])?.start).toEqual([10, 10]);
     expect(maxl.queue.get(receipt.segmentIds[0])?.end).toEqual([30, 0]);
-    expect(maxl.queue.untransmittedCount).toBe(1);
+    expect(maxl.queue.untransmittedCount).toBe(2);
   });
 
   it('an abort after the slot came but before the move was appended still gives the move up, and the slot back', async () => {
-    const maxl = createMAXL(config(1));
-    await maxl.addSegmentToQueue({ endPosition: [10, 0] });
+    const maxl = await fullQueue();
     const controller = new AbortController();
     const a = maxl.addSegmentToQueue({ endPosition: [20, 0] }, { signal: controller.signal });
     queueOf(maxl).transmitNext(0); // grants the slot now; the move is appended a turn later
     controller.abort();
     expect((await rejection(a)).code).toBe('ABORTED');
-    expect(maxl.queue.untransmittedCount).toBe(0);
+    expect(maxl.queue.untransmittedCount).toBe(1);
     expect(maxl.queue.hasRoom()).toBe(true);
   });
 });
