@@ -18,7 +18,9 @@ export type MaxlErrorCode =
   | 'LINK_LOST'
   | 'DEVICE_REFUSED'
   | 'BUFFER_CONFLICT'
-  | 'NOT_STARTED';
+  | 'NOT_STARTED'
+  /** A recovery step called out of order (reconnect() before the machine stopped, resume() before reconnect()…). */
+  | 'RECOVERY_ORDER';
 
 export class MaxlError extends Error {
   readonly code: MaxlErrorCode;

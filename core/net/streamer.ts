@@ -47,6 +47,8 @@ export interface DeviceBinding {
   eventSlots: Map<number, number>;
   /** queue depth the device reported */
   capacity: number;
+  /** Where each position slot stands, for the first GEOMETRY, when not at the path's start (a resumed job). */
+  p0?: number[];
 }
 
 export interface StreamerOptions {
@@ -93,9 +95,13 @@ interface DeviceState {
   needP0: boolean;
   /** event entries waiting for room on the device */
   pendingEvents: MessageOf<'EVENTS'>[];
+  /** The last GEOMETRY messages given to the session, with their sequence numbers and segments (newest last). */
+  geometryLog: Array<{ seq: number; firstId: number; segments: Segment[] }>;
 }
 
 const MIN_SPLIT_MM = 0.01;
+/** Segments the wire log keeps (segmentForWireId, sentInOrder): far more than a device queue holds. */
+const WIRE_LOG = 2048;
 /** Segments nearTailRest() looks at after the next one, at most. */
 const TAIL_SCAN = 64;
 
@@ -115,7 +121,15 @@ export class Streamer {
   private running = false;
   /** While set, the streamer sends no timing for this segment or after it. */
   private holdAt: Segment | null = null;
-  private idleWaiters: Array<() => void> = [];
+  private idleWaiters: Array<{ resolve(): void; reject(err: Error): void }> = [];
+  /**
+   * Every segment whose geometry went out, in order, by wire id (the last
+   * WIRE_LOG of them): a device's STATUS names where it stopped by wire id, and
+   * after a stop off the plan, recovery needs that segment and the ones after it
+   * even once the author has retired them (net/runtime.ts, reconnect()).
+   */
+  private readonly wireLog = new Map<number, Segment>();
+  private readonly wireOrder: Array<{ seg: Segment; id: number }> = [];
 
   constructor(
     queue: TrajectoryQueue,
@@ -126,7 +140,7 @@ export class Streamer {
   ) {
     this.queue = queue;
     this.scheduler = scheduler;
-    this.devices = devices.map((binding) => ({ binding, timedEnd: null, timedEndAuthor: NaN, needP0: true, pendingEvents: [] }));
+    this.devices = devices.map((binding) => ({ binding, timedEnd: null, timedEndAuthor: NaN, needP0: true, pendingEvents: [], geometryLog: [] }));
     this.onEvent = onEvent;
     this.options = { ...DEFAULT_STREAMER, ...options };
   }
@@ -158,12 +172,21 @@ export class Streamer {
     this.schedulePump(0);
   }
 
-  /** Stops sending anything more; devices finish their timed path and brake along their geometry. */
-  stop(): void {
+  /**
+   * Stops sending anything more; devices finish their timed path and brake along
+   * their geometry. With `why`, whoever waits for idle is told the job will not get there.
+   */
+  stop(why?: Error): void {
     this.running = false;
     this.unsubscribe?.();
+    this.unsubscribe = null;
     this.tickTimer?.cancel();
     this.tickTimer = null;
+    if (why) {
+      const waiters = this.idleWaiters;
+      this.idleWaiters = [];
+      for (const w of waiters) w.reject(why);
+    }
   }
 
   /** Whether the machine has nothing left to run: no timed segment ahead and nothing to send. */
@@ -177,7 +200,7 @@ export class Streamer {
   /** Resolves once the machine is idle (or held and at rest). */
   whenIdle(): Promise<void> {
     if (this.idle) return Promise.resolve();
-    return new Promise((resolve) => this.idleWaiters.push(resolve));
+    return new Promise((resolve, reject) => this.idleWaiters.push({ resolve, reject }));
   }
 
   /** Brings the machine to rest on the path as soon as its limits allow, and holds there. */
@@ -203,9 +226,45 @@ export class Streamer {
     await this.whenIdle();
   }
 
-  /** The segment a device numbers `wireId`, among those the devices hold. */
+  /** The segment a device numbers `wireId`: among those the devices hold, else the last one sent under that id. */
   segmentForWireId(wireId: number): Segment | undefined {
-    return this.sent.find((s) => this.wireIds.get(s) === wireId);
+    return this.sent.find((s) => this.wireIds.get(s) === wireId) ?? this.wireLog.get(wireId);
+  }
+
+  /**
+   * The segment device `name` holds as `wireId`. Ids are reused after a
+   * REPLACE_TAIL, so it is the last GEOMETRY naming it that the device handled:
+   * every frame before `expectedSeq` (its next sequence number, from a probe after
+   * the link came back); null trusts every frame sent.
+   */
+  segmentOnDevice(name: string, wireId: number, expectedSeq: number | null): Segment | undefined {
+    const d = this.devices.find((x) => x.binding.name === name);
+    if (!d) return this.segmentForWireId(wireId);
+    // Frames sent after the last one the device handled: (last − expected + 1) mod 256 of them.
+    const last = d.binding.session.lastSentSeq;
+    const unhandled = expectedSeq === null ? 0 : (last - expectedSeq + 1) & 0xff;
+    for (let i = d.geometryLog.length - 1; i >= 0; i--) {
+      const entry = d.geometryLog[i];
+      if (((last - entry.seq) & 0xff) < unhandled) continue;
+      const k = (wireId - entry.firstId) & 0xffff;
+      if (k < entry.segments.length) return entry.segments[k];
+    }
+    return this.segmentForWireId(wireId);
+  }
+
+  /** Segments whose geometry went out, in the order sent (the last WIRE_LOG). */
+  get sentInOrder(): Segment[] {
+    return this.wireOrder.map((w) => w.seg);
+  }
+
+  private logWire(seg: Segment, wireId: number): void {
+    this.wireLog.set(wireId, seg);
+    this.wireOrder.push({ seg, id: wireId });
+    if (this.wireOrder.length > WIRE_LOG * 2) {
+      for (const old of this.wireOrder.splice(0, this.wireOrder.length - WIRE_LOG)) {
+        if (this.wireLog.get(old.id) === old.seg) this.wireLog.delete(old.id);
+      }
+    }
   }
 
   // --- the pump ---
@@ -291,7 +350,7 @@ export class Streamer {
     if (this.idle) {
       const waiters = this.idleWaiters;
       this.idleWaiters = [];
-      for (const w of waiters) w();
+      for (const w of waiters) w.resolve();
       this.onEvent({ type: 'idle' });
     }
     // Keep pumping while anything runs or waits; queue events wake it otherwise.
@@ -388,6 +447,7 @@ export class Streamer {
     const firstId = this.nextWireId;
     for (const s of fresh) {
       this.wireIds.set(s, this.nextWireId);
+      this.logWire(s, this.nextWireId);
       this.nextWireId = (this.nextWireId + 1) & 0xffff;
     }
     for (const d of this.devices) {
@@ -395,11 +455,18 @@ export class Streamer {
       if (session.state !== 'open') continue;
       const messages: Message[] = [];
       if (fresh.length > 0) {
-        messages.push(...geometryMessages(fresh, d.binding.positionSlots, firstId, d.needP0));
+        messages.push(...geometryMessages(fresh, d.binding.positionSlots, firstId, d.needP0, d.needP0 ? d.binding.p0 : undefined));
         d.needP0 = false;
       }
       if (newlyTimed.length > 0) messages.push(...this.timingFor(d, newlyTimed));
-      for (const m of messages) this.post(d, m);
+      for (const m of messages) {
+        this.post(d, m);
+        if (m.type === 'GEOMETRY') {
+          const from = (m.firstId - firstId) & 0xffff;
+          d.geometryLog.push({ seq: session.lastSentSeq, firstId: m.firstId, segments: fresh.slice(from, from + m.count) });
+          if (d.geometryLog.length > WIRE_LOG) d.geometryLog.splice(0, d.geometryLog.length - WIRE_LOG / 2);
+        }
+      }
       this.flushEvents(d);
     }
   }
