@@ -113,7 +113,7 @@ export class Runtime {
   private stopRecord: StopRecord | null = null;
   /** 'idle' until reconnect() starts, 'reconnecting' during it, 'reconnected' once the job can resume. */
   private recovery: 'idle' | 'reconnecting' | 'reconnected' = 'idle';
-  /** Boards that restarted: author µs at which each was last heard running its old session. */
+  /** Boards that restarted: author µs at which each was last known to run its old session (its last frame's sending). */
   private readonly restarted = new Map<DeviceSession, number>();
   /** The last stop each session reported, so that a repeated STATUS is not reported again. */
   private readonly lastStop = new Map<DeviceSession, string>();
@@ -175,7 +175,8 @@ export class Runtime {
           samples: (m, at) => this.onSamples(session, m, at),
           lost: (reason) => this.onLost(session, reason),
           rebooted: () => {
-            this.restarted.set(session, session.heardBefore_us);
+            // Its last frame before the restart left it about half a round trip before it came.
+            this.restarted.set(session, session.heardBefore_us - (session.rtt_us || 0) / 2);
             this.emit({ type: 'device', device: session.label, state: 'rebooted' });
           },
         },
@@ -261,7 +262,7 @@ export class Runtime {
         const said = status && old ? pointFromStatus(status, (id) => old.segmentOnDevice(info.name, id, expectedSeq)) : null;
         const fromStatus = said ? onPath(path, said) : null;
         const lastAlive = [...this.restarted].find(([s]) => s.label === info.name)?.[1];
-        const estimate = !fromStatus && lastAlive !== undefined ? pointAtTime(path, lastAlive - this.sessions[i].rtt_us / 2) : null;
+        const estimate = !fromStatus && lastAlive !== undefined ? pointAtTime(path, lastAlive) : null;
         if (fromStatus) stops.push({ device: info.name, point: fromStatus, source: 'status' });
         else if (estimate) stops.push({ device: info.name, point: estimate, source: 'estimate' });
       });

@@ -36,8 +36,12 @@ export interface DeviceInfo {
   readers: ReaderInfo[];
 }
 
-/** How a sent frame ended: acknowledged, or refused with a reason (the device consumed it). */
-export type SendResult = { ok: true } | { ok: false; reason: NackReasonName; detail: number };
+/**
+ * How a sent frame ended: acknowledged, or refused with a reason (the device
+ * consumed it). `unsent` marks a frame the session gave up on when it ended (lost
+ * or closed): the device may or may not have handled it.
+ */
+export type SendResult = { ok: true } | { ok: false; reason: NackReasonName; detail: number; unsent?: true };
 
 /** What probe() learned: where the device is, and the sequence number it expected next (null: no session). */
 export interface ProbeResult {
@@ -295,7 +299,7 @@ export class DeviceSession {
     this.stopTimers();
     this.state = 'closed';
     this.probing = null;
-    for (const o of [...this.inFlight, ...this.waiting]) o.resolve({ ok: false, reason: 'UNKNOWN_MESSAGE', detail: 0 });
+    for (const o of [...this.inFlight, ...this.waiting]) o.resolve({ ok: false, reason: 'UNKNOWN_MESSAGE', detail: 0, unsent: true });
     this.inFlight = [];
     this.waiting = [];
     // Writes already chained go out first.
@@ -605,7 +609,7 @@ export class DeviceSession {
       this.pendingHello.reject(new MaxlError('DEVICE_UNAVAILABLE', `${this.label}: ${reason}`));
       this.pendingHello = null;
     }
-    for (const o of [...this.inFlight, ...this.waiting]) o.resolve({ ok: false, reason: 'UNKNOWN_MESSAGE', detail: 0 });
+    for (const o of [...this.inFlight, ...this.waiting]) o.resolve({ ok: false, reason: 'UNKNOWN_MESSAGE', detail: 0, unsent: true });
     this.inFlight = [];
     this.waiting = [];
     this.detach();

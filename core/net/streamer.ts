@@ -96,7 +96,7 @@ interface DeviceState {
   /** event entries waiting for room on the device */
   pendingEvents: MessageOf<'EVENTS'>[];
   /** The last GEOMETRY messages given to the session, with their sequence numbers and segments (newest last). */
-  geometryLog: Array<{ seq: number; firstId: number; segments: Segment[] }>;
+  geometryLog: Array<{ seq: number; firstId: number; segments: Segment[]; result: 'pending' | 'ok' | 'refused' }>;
 }
 
 const MIN_SPLIT_MM = 0.01;
@@ -233,8 +233,8 @@ export class Streamer {
 
   /**
    * The segment device `name` holds as `wireId`. Ids are reused after a
-   * REPLACE_TAIL, so it is the last GEOMETRY naming it that the device handled:
-   * every frame before `expectedSeq` (its next sequence number, from a probe after
+   * REPLACE_TAIL, so it is the last GEOMETRY naming it that the device handled
+   * and did not refuse (one whose answer was lost counts as taken): every frame before `expectedSeq` (its next sequence number, from a probe after
    * the link came back); null trusts every frame sent.
    */
   segmentOnDevice(name: string, wireId: number, expectedSeq: number | null): Segment | undefined {
@@ -245,7 +245,8 @@ export class Streamer {
     const unhandled = expectedSeq === null ? 0 : (last - expectedSeq + 1) & 0xff;
     for (let i = d.geometryLog.length - 1; i >= 0; i--) {
       const entry = d.geometryLog[i];
-      if (((last - entry.seq) & 0xff) < unhandled) continue;
+      // Not handled yet, or refused (a REPLACE_TAIL too late, its new geometry then out of order): not what it holds.
+      if (((last - entry.seq) & 0xff) < unhandled || entry.result === 'refused') continue;
       const k = (wireId - entry.firstId) & 0xffff;
       if (k < entry.segments.length) return entry.segments[k];
     }
@@ -460,12 +461,19 @@ export class Streamer {
       }
       if (newlyTimed.length > 0) messages.push(...this.timingFor(d, newlyTimed));
       for (const m of messages) {
-        this.post(d, m);
-        if (m.type === 'GEOMETRY') {
-          const from = (m.firstId - firstId) & 0xffff;
-          d.geometryLog.push({ seq: session.lastSentSeq, firstId: m.firstId, segments: fresh.slice(from, from + m.count) });
-          if (d.geometryLog.length > WIRE_LOG) d.geometryLog.splice(0, d.geometryLog.length - WIRE_LOG / 2);
+        if (m.type !== 'GEOMETRY') {
+          this.post(d, m);
+          continue;
         }
+        const from = (m.firstId - firstId) & 0xffff;
+        const entry = { seq: 0, firstId: m.firstId, segments: fresh.slice(from, from + m.count), result: 'pending' as 'pending' | 'ok' | 'refused' };
+        this.post(d, m, (r) => {
+          if (r.ok) entry.result = 'ok';
+          else if (!r.unsent) entry.result = 'refused';
+        });
+        entry.seq = session.lastSentSeq;
+        d.geometryLog.push(entry);
+        if (d.geometryLog.length > WIRE_LOG) d.geometryLog.splice(0, d.geometryLog.length - WIRE_LOG / 2);
       }
       this.flushEvents(d);
     }
@@ -534,10 +542,12 @@ export class Streamer {
     }
   }
 
-  private post(d: DeviceState, m: Message): void {
+  private post(d: DeviceState, m: Message, onResult?: (r: SendResult) => void): void {
     d.binding.session.send(m).then(
       (r: SendResult) => {
-        if (!r.ok) this.onEvent({ type: 'refused', device: d.binding.name, reason: r.reason, detail: r.detail, message: m });
+        onResult?.(r);
+        // A frame the session gave up on as it ended was not refused: the runtime hears of the end itself.
+        if (!r.ok && !r.unsent) this.onEvent({ type: 'refused', device: d.binding.name, reason: r.reason, detail: r.detail, message: m });
         if (d.pendingEvents.length > 0) this.flushEvents(d);
       },
       () => {

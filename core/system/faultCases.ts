@@ -16,7 +16,10 @@
  *                     would mean a segment executed late or partially
  *   stateOk           maxl.stopped.reason is the fault's, and an error event said
  *                     "Streaming stopped" (the words the workbench shows)
- *   resumed           the carriage ended at the job's end (within endError_mm ≤ 0.02)
+ *   resumed           the job ran to its end: nothing left queued, no stop pending
+ *   endError_mm       the carriage's distance from the job's end point at the end:
+ *                     a step's rounding (≤ 0.02) except after a board restarted, whose
+ *                     position is the plan's at its last frame (v × time since it)
  */
 import type { Move } from '../index.ts';
 import { accelRig, blotPlotter, lightPainter, type MachinePreset } from '../sim/presets/index.ts';
@@ -264,7 +267,7 @@ export async function runFaultCase(c: FaultCase): Promise<FaultOutcome> {
   const end = carriage();
   const goal = job[job.length - 1];
   out.endError_mm = Math.hypot(...end.map((v, i) => v - goal[i]));
-  out.resumed = out.endError_mm <= 0.02 && b.maxl.stopped === null;
+  out.resumed = b.maxl.stopped === null && b.maxl.queue.untransmittedCount === 0 && b.maxl.queue.transmittedEnd_us < b.scheduler.now();
   out.worstBack_mm = Math.max(0, tracker.worstBack - out.spread_mm);
   out.resends = (b.maxl as unknown as { runtime: { sessions: Array<{ resends: number }> } }).runtime.sessions.reduce((n, s) => n + s.resends, 0);
   if (!Number.isNaN(firstStart)) for (let t = firstStart; t <= firstStart + duration; t += 5000) out.plan.push(b.maxl.sample(t).position);

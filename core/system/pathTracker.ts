@@ -5,9 +5,9 @@
  * to its end.
  *
  * The projection is tracked: each sample is projected onto the polyline pieces
- * next to the previous one's, taking among the nearest (within 1 µm) the arc length
- * closest to the previous. So a path that doubles back over itself (a 1-D job) is
- * still followed piece by piece.
+ * next to the previous one's; among the nearest (within 1 µm) it takes the least
+ * arc length not behind the previous one, else the one closest to it. So a path
+ * that doubles back over itself (a 1-D job) is still followed piece by piece.
  */
 export class PathTracker {
   private readonly cumulative: number[] = [0];
@@ -45,7 +45,9 @@ export class PathTracker {
       if (!best || d < best.d) best = c;
     }
     const near = candidates.filter((c) => c.d <= (best as { d: number }).d + 1e-3);
-    const chosen = near.reduce((x, y) => (Math.abs(y.s - this.s) < Math.abs(x.s - this.s) ? y : x));
+    // Forward first: the nearest arc length not behind the last (by more than 1 µm); else the nearest.
+    const ahead = near.filter((c) => c.s >= this.s - 1e-3);
+    const chosen = ahead.length > 0 ? ahead.reduce((x, y) => (y.s < x.s ? y : x)) : near.reduce((x, y) => (Math.abs(y.s - this.s) < Math.abs(x.s - this.s) ? y : x));
     this.worstBack = Math.max(this.worstBack, this.s - chosen.s);
     this.worstAhead = Math.max(this.worstAhead, chosen.s - this.s);
     this.worstOff = Math.max(this.worstOff, chosen.d);
