@@ -7,6 +7,7 @@
 import { describe, expect, it } from 'vitest';
 import { seededRandom } from '../sim/random.ts';
 import { runFaultCase, type FaultCase, type FaultOutcome } from './faultCases.ts';
+import { runLongJob } from './longJob.ts';
 
 /** A board that restarted resumes from the plan at its last frame: off by v × the time since (see faultCases.ts). */
 const RESTART_TOLERANCE_MM = 0.5;
@@ -65,4 +66,16 @@ describe('other faults, then reconnect and resume', () => {
     expect(noisy.plan.length).toBe(clean.plan.length);
     clean.plan.forEach((p, k) => p.forEach((v, i) => expect(noisy.plan[k][i]).toBeCloseTo(v, 6)));
   }, 120_000);
+});
+
+describe('a long job', () => {
+  it('one hour (eight in the bench), a stroke every 5 minutes on a 150 ppm crystal across the u32 wrap: drift stays bounded', async () => {
+    const r = await runLongJob(3.6e9, 300_000_000);
+    expect(r.strokes).toBe(12);
+    expect(r.wraps).toBe(1);
+    expect(r.worstLateSteps).toBeLessThanOrEqual(0); // every stroke on its plan within a step (+ the model's error)
+    expect(r.lastStrokeSteps).toBeLessThan(2);
+    expect(r.settledModelError_us).toBeLessThan(100);
+    expect(r.errors).toEqual([]);
+  }, 300_000);
 });

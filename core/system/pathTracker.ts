@@ -5,10 +5,17 @@
  * to its end.
  *
  * The projection is tracked: each sample is projected onto the polyline pieces
- * next to the previous one's; among the nearest (within 1 µm) it takes the least
+ * next to the previous one's; among the nearest (within NEAR_MM) it takes the least
  * arc length not behind the previous one, else the one closest to it. So a path
  * that doubles back over itself (a 1-D job) is still followed piece by piece.
  */
+/**
+ * Pieces this much (mm) farther than the nearest still count as near: a carriage a
+ * little off its path (a restarted board resumes from an estimate, off by ~0.1 mm)
+ * still follows it piece by piece where the path doubles back over itself.
+ */
+const NEAR_MM = 0.2;
+
 export class PathTracker {
   private readonly cumulative: number[] = [0];
   private piece = 0;
@@ -44,7 +51,7 @@ export class PathTracker {
       candidates.push(c);
       if (!best || d < best.d) best = c;
     }
-    const near = candidates.filter((c) => c.d <= (best as { d: number }).d + 1e-3);
+    const near = candidates.filter((c) => c.d <= (best as { d: number }).d + NEAR_MM);
     // Forward first: the nearest arc length not behind the last (by more than 1 µm); else the nearest.
     const ahead = near.filter((c) => c.s >= this.s - 1e-3);
     const chosen = ahead.length > 0 ? ahead.reduce((x, y) => (y.s < x.s ? y : x)) : near.reduce((x, y) => (Math.abs(y.s - this.s) < Math.abs(x.s - this.s) ? y : x));
