@@ -49,6 +49,8 @@ interface Run {
   doneLength: number;
   /** s of motion of the finished segments */
   motion_s: number;
+  /** Stopped off its plan (a lost link, a restart, STOP): resumable from where it stopped (resumeAfterStop). */
+  resumable: boolean;
 }
 
 /** Feed at most this long (ms) before letting commands in. */
@@ -87,6 +89,7 @@ export class JobRunner {
       doneLength: Math.min(r.totalLength, r.doneLength),
       eta_s,
       elapsed_s: r.motion_s,
+      resumable: r.resumable,
     };
   }
 
@@ -176,6 +179,7 @@ export class JobRunner {
     this.run = {
       ...r,
       phase: 'loading',
+      resumable: false,
       stopped: false,
       fed: 0,
       firstMoveId: 0,
@@ -224,21 +228,52 @@ export class JobRunner {
     );
   }
 
-  /** STOP was pressed: the job is over. */
+  /** STOP was pressed: the job stops here (Resume takes it on from there, after reconnecting). */
   halted(): void {
     const r = this.run;
     if (!r || !this.active) return;
     r.stopped = true;
     r.phase = 'halted';
+    r.resumable = true;
   }
 
-  /** The machine can no longer run the job (a device was lost, the runtime was replaced). */
-  abort(reason: string): void {
+  /**
+   * The machine can no longer run the job (a device was lost, the runtime was
+   * replaced). `resumable`: it stopped on its path, and the same author can take the
+   * rest on after reconnecting (resumeAfterStop).
+   */
+  abort(reason: string, resumable = false): void {
     const r = this.run;
     if (!r || !this.active) return;
     r.stopped = true;
     r.phase = 'failed';
-    this.host.log('error', 'JOB_FAILED', `“${r.name}” stopped: ${reason}`);
+    r.resumable = resumable;
+    this.host.log('error', 'JOB_FAILED', `“${r.name}” stopped: ${reason}${resumable ? '. Press Resume to go on from where it stopped.' : ''}`);
+  }
+
+  /** Whether the last job stopped off its plan and can be resumed. */
+  get resumable(): boolean {
+    return this.run?.resumable === true && !this.active;
+  }
+
+  /**
+   * After maxl.reconnect() and maxl.resumeJob(): the job runs on, its queued rest
+   * first, then the moves not fed yet. Returns the job's name, or null if none can.
+   */
+  resumeAfterStop(): string | null {
+    const r = this.run;
+    if (!r || !this.resumable) return null;
+    r.resumable = false;
+    r.stopped = false;
+    r.phase = 'running';
+    void this.feed(r).catch((err) => this.fail(r, err));
+    this.startWatch();
+    return r.name;
+  }
+
+  /** The resumable job will not be resumed (Re-arm started a new author). */
+  dropResumable(): void {
+    if (this.run) this.run.resumable = false;
   }
 
   /** Forgets the last job (another machine was chosen: its progress means nothing there). */
@@ -260,7 +295,8 @@ export class JobRunner {
     const { maxl } = r;
     const queue = maxl.queue;
     let sliceStart = performance.now();
-    for (let i = 0; i < r.count; i++) {
+    // From the first move not fed yet (0, or after a resume).
+    for (let i = r.fed; i < r.count; i++) {
       while (!r.stopped && !queue.hasRoom()) await roomIn(maxl, r);
       if (r.stopped) return;
       const queued = maxl.addSegmentToQueue(r.moveAt(i));
