@@ -36,7 +36,7 @@ export class PathTracker {
     return this.cumulative[this.cumulative.length - 1];
   }
 
-  /** Projects one sample; returns its distance from the path (mm). */
+  /** Projects one sample; returns its distance from the path (mm, to the nearest piece looked at). */
   add(p: readonly number[]): number {
     let best: { d: number; s: number; piece: number } | null = null;
     const candidates: Array<{ d: number; s: number; piece: number }> = [];
@@ -57,9 +57,11 @@ export class PathTracker {
     const chosen = ahead.length > 0 ? ahead.reduce((x, y) => (y.s < x.s ? y : x)) : near.reduce((x, y) => (Math.abs(y.s - this.s) < Math.abs(x.s - this.s) ? y : x));
     this.worstBack = Math.max(this.worstBack, this.s - chosen.s);
     this.worstAhead = Math.max(this.worstAhead, chosen.s - this.s);
-    this.worstOff = Math.max(this.worstOff, chosen.d);
+    // Off the path: the distance to the nearest piece, whichever the arc length was taken from.
+    const off = (best as { d: number }).d;
+    this.worstOff = Math.max(this.worstOff, off);
     this.s = chosen.s;
     this.piece = chosen.piece;
-    return chosen.d;
+    return off;
   }
 }
