@@ -7,7 +7,11 @@
  *            mismatch), subscribes the readers, syncs clocks, and starts streaming.
  *   pause(), resume(), cancel()  stop on the path and hold, go on, or stop and drop
  *            the rest.
- *   halt()   stops every device now (HALT), drops everything queued.
+ *   halt()   stops every device now (HALT); the rest of the job stays queued.
+ *   reconnect(), resumeJob(), discardJob()  after a stop off the plan (a lost link,
+ *            a restarted device, a HALT, a refusal): re-open the links, learn where
+ *            each board stopped, re-sync, and run (or drop) the rest of the job
+ *            (docs/architecture.md §9).
  *   estimate()  where the machine is now, by the author's clock.
  */
 import { MaxlError } from '../errors.ts';

@@ -95,3 +95,59 @@ describe('recovery after a link cut', () => {
     await b.sim.stop();
   }, 60_000);
 });
+
+describe('recovery after HALT, and the order of the steps', () => {
+  it('reconnect() before any stop, and resumeJob() or discardJob() before reconnect(), are refused', async () => {
+    const b = await startMachine(blotPlotter(), { seed: 5 });
+    await expectCode(settle(b.scheduler, b.maxl.reconnect(), 1_000_000), 'RECOVERY_ORDER');
+    await expectCode(() => b.maxl.resumeJob(), 'RECOVERY_ORDER');
+    await expectCode(() => b.maxl.discardJob(), 'RECOVERY_ORDER');
+    expect(b.maxl.stopped).toBeNull();
+    await b.maxl.end();
+    await b.sim.stop();
+  }, 60_000);
+
+  it('HALT keeps the rest of the job: reconnect() and resumeJob() finish it', async () => {
+    const b = await startMachine(blotPlotter(), { seed: 6 });
+    for (const p of PATH) void b.maxl.addSegmentToQueue({ endPosition: p });
+    await b.scheduler.advance(1_200_000);
+    await settle(b.scheduler, b.maxl.halt(), 1_000_000);
+    await b.scheduler.advance(300_000);
+    expect(b.maxl.stopped?.reason).toBe('halted');
+    const here = carriage(b);
+    await expectCode(b.maxl.pause(), 'RECOVERY_ORDER');
+    await expectCode(() => b.maxl.resume(), 'RECOVERY_ORDER');
+    const report = await settle(b.scheduler, b.maxl.reconnect(), 10_000_000);
+    expect(report.stop.reason).toBe('halted');
+    expect(Math.hypot(report.resumeFrom![0] - here[0], report.resumeFrom![1] - here[1])).toBeLessThan(0.03);
+    expect(report.remaining).toBeGreaterThan(0);
+    b.maxl.resumeJob();
+    await settle(b.scheduler, b.maxl.whenIdle(), 30_000_000);
+    await b.scheduler.advance(200_000);
+    const end = carriage(b);
+    expect(Math.hypot(end[0] - 80, end[1] - 40)).toBeLessThan(0.02);
+    await b.maxl.end();
+    await b.sim.stop();
+  }, 60_000);
+
+  it('discardJob() drops the rest: the machine stays where it stopped, ready for new moves', async () => {
+    const b = await startMachine(blotPlotter(), { seed: 7 });
+    for (const p of PATH) void b.maxl.addSegmentToQueue({ endPosition: p });
+    await b.scheduler.advance(1_200_000);
+    await settle(b.scheduler, b.maxl.halt(), 1_000_000);
+    await b.scheduler.advance(300_000);
+    const here = carriage(b);
+    await settle(b.scheduler, b.maxl.reconnect(), 10_000_000);
+    b.maxl.discardJob();
+    expect(b.maxl.queue.untransmittedCount).toBe(0);
+    await b.scheduler.advance(300_000);
+    expect(carriage(b)).toEqual(here);
+    void b.maxl.addSegmentToQueue({ endPosition: [20, 20] });
+    await settle(b.scheduler, b.maxl.whenIdle(), 10_000_000);
+    await b.scheduler.advance(100_000);
+    const end = carriage(b);
+    expect(Math.hypot(end[0] - 20, end[1] - 20)).toBeLessThan(0.02);
+    await b.maxl.end();
+    await b.sim.stop();
+  }, 60_000);
+});
