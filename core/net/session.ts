@@ -122,7 +122,9 @@ export class DeviceSession {
   private writer: WritableStreamDefaultWriter<Uint8Array> | null = null;
   private reader: ReadableStreamDefaultReader<Uint8Array> | null = null;
   /** While probe() waits: what it does with the device's answers. */
-  private probing: { onStatus(s: MessageOf<'STATUS'>): void; onAnswer(seq: number, nack: MessageOf<'NACK'> | null): void } | null = null;
+  private probing: { onAnswer(seq: number, nack: MessageOf<'NACK'> | null, statusBefore: MessageOf<'STATUS'> | null): void } | null = null;
+  /** While probing: the packet just before this one, if it was a STATUS (a request's STATUS comes right before its ack). */
+  private probeStatus: MessageOf<'STATUS'> | null = null;
   private writeChain: Promise<void> = Promise.resolve();
   private nextSeq = 1;
   /** Frames sent and not yet acknowledged, oldest first, then frames waiting for the window. */
@@ -271,16 +273,20 @@ export class DeviceSession {
       };
       const ask = (seq: number) => {
         asked = seq & 0xff;
+        this.probeStatus = null;
         this.write(encodeFrame(asked, { type: 'STATUS_REQUEST' }));
       };
       this.probing = {
-        // The request it answers was handled as new: the device expected its number.
-        onStatus: (status) => finish({ status, expectedSeq: asked }),
-        onAnswer: (seq, nack) => {
+        onAnswer: (seq, nack, statusBefore) => {
           const reason = nack ? nameOf(NackReason, nack.reason) : null;
+          // Acked right after a STATUS: the request was handled as new, so the device
+          // expected its number. (A board that is not idle also sends STATUS every
+          // 100 ms: only the one just before the ack is the answer.)
           if (reason === 'OUT_OF_ORDER' && nack!.detail === NO_SESSION_DETAIL) finish({ status: null, expectedSeq: null });
+          else if (reason === 'BAD_CRC') ask(nack!.seq); // it names the number expected
+          else if (seq !== asked) return; // an answer to the old session's traffic, late
+          else if (!nack && statusBefore) finish({ status: statusBefore, expectedSeq: asked });
           else if (reason === 'OUT_OF_ORDER') ask(nack!.detail);
-          else if (reason === 'BAD_CRC') ask(nack!.seq);
           else ask(seq + 16); // a duplicate's old answer, or a refusal: try further on
         },
       };
@@ -410,9 +416,10 @@ export class DeviceSession {
       throw err;
     }
     if (this.probing) {
-      if (message.type === 'STATUS') this.probing.onStatus(message);
-      else if (message.type === 'ACK') this.probing.onAnswer(message.ackSeq, null);
-      else if (message.type === 'NACK') this.probing.onAnswer(message.seq, message);
+      const before = this.probeStatus;
+      this.probeStatus = message.type === 'STATUS' ? message : null;
+      if (message.type === 'ACK') this.probing.onAnswer(message.ackSeq, null, before);
+      else if (message.type === 'NACK') this.probing.onAnswer(message.seq, message, before);
       return;
     }
     switch (message.type) {
