@@ -107,6 +107,8 @@ for (const preset of presets) {
   log(`${preset} done`);
 }
 
+// The matrix so far, in case the long job is cut short (the last line below has everything).
+console.log(JSON.stringify({ matrixBeforeLongJob: matrix }));
 log(`long job: ${HOURS} h`);
 const longJob = await runLongJob(HOURS * 3.6e9, 300_000_000);
 const cases = Object.values(matrix).flatMap((row) => Object.values(row) as Array<{ cases: number; survived: number }>);
