@@ -22,7 +22,9 @@ export type MaxlErrorCode =
   | 'STREAM_FAILED'
   | 'NOT_STARTED'
   /** A wait was given up through its AbortSignal (addSegmentToQueue, whenIdle): nothing was changed by it. */
-  | 'ABORTED';
+  | 'ABORTED'
+  /** A recovery step called out of order (reconnect() before the machine stopped, resume() before reconnect()…). */
+  | 'RECOVERY_ORDER';
 
 export class MaxlError extends Error {
   readonly code: MaxlErrorCode;

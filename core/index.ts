@@ -39,7 +39,7 @@ export type { Link } from './net/link.ts';
 export { MAXL_DEFAULT_BAUD, uartBytesPerSecond } from './net/link.ts';
 export type { DeviceInfo, ReaderInfo, SessionOptions } from './net/session.ts';
 export type { ReaderKindName } from './net/protocol.ts';
-export type { DeviceReport, RuntimeEvent } from './runtime.ts';
+export type { DeviceReport, RecoveryReport, RuntimeEvent, StopRecord } from './runtime.ts';
 export { bytesPerSegment, feedLimit, LINK_SHARE, type FeedLimit, type LinkLoad } from './net/linkFeedLimit.ts';
 export type { StreamerOptions } from './net/streamer.ts';
 export type { Scheduler, Timer } from './time/scheduler.ts';

@@ -15,7 +15,7 @@ import type { Move, ValidatedMove } from './trajectory/moves.ts';
 import { TrajectoryQueue, type MoveReceipt } from './trajectory/queue.ts';
 import { TrajectoryHistory } from './trajectory/history.ts';
 import { readOnlyHistory, readOnlyQueue, type HistoryView, type QueueView } from './trajectory/queueView.ts';
-import { Runtime, type DeviceReport, type RuntimeEvent } from './runtime.ts';
+import { Runtime, type DeviceReport, type RecoveryReport, type RuntimeEvent, type StopRecord } from './runtime.ts';
 import type { FeedLimit } from './net/linkFeedLimit.ts';
 import type { Link } from './net/link.ts';
 import type { DeviceInfo, SessionOptions } from './net/session.ts';
@@ -252,6 +252,7 @@ export class Maxl {
     return this.started().pause();
   }
 
+  /** Continues after pause(). (After a stop off the plan, see reconnect() and resumeJob().) */
   resume(): void {
     this.started().resume();
   }
@@ -261,9 +262,45 @@ export class Maxl {
     return this.started().cancel();
   }
 
-  /** Emergency stop: every device stops where it is, now; everything queued is dropped. */
+  /**
+   * Emergency stop: every device stops where it is, now. Nothing more streams; the
+   * rest of the job stays queued for reconnect() and resumeJob(), or discardJob().
+   */
   halt(): Promise<void> {
     return this.started().halt();
+  }
+
+  // --- recovery (docs/architecture.md, "Recovery") ---
+
+  /**
+   * Why the machine stopped off its plan (a link lost, a device restarted, a HALT,
+   * a refused segment), until the job resumes or is dropped; null while all is well.
+   * While it is set, pause(), resume(), cancel() and whenIdle() refuse with
+   * RECOVERY_ORDER; moves added meanwhile wait at the end of the job.
+   */
+  get stopped(): Readonly<StopRecord> | null {
+    return this.runtime?.stopped ?? null;
+  }
+
+  /**
+   * After a stop off the plan: re-opens the links (the same ones, or `links` in
+   * their place), asks every board where it stopped, re-syncs clocks, and rebuilds
+   * the queue from there: the rest of the job, nothing lost, nothing run twice.
+   * Nothing moves until resumeJob() or discardJob(). Refuses with RECOVERY_ORDER
+   * out of order, DEVICE_UNAVAILABLE if a board does not answer (then try again).
+   */
+  reconnect(links?: Link[]): Promise<RecoveryReport> {
+    return this.started().reconnect(links);
+  }
+
+  /** After reconnect(): runs the rest of the job from where the machine stopped. */
+  resumeJob(): void {
+    this.started().resumeJob();
+  }
+
+  /** After reconnect(): drops the rest of the job; the machine stays where it stopped. */
+  discardJob(): void {
+    this.started().discardJob();
   }
 
   /**

@@ -7,7 +7,11 @@
  *            mismatch), subscribes the readers, syncs clocks, and starts streaming.
  *   pause(), resume(), cancel()  stop on the path and hold, go on, or stop and drop
  *            the rest.
- *   halt()   stops every device now (HALT), drops everything queued.
+ *   halt()   stops every device now (HALT); the rest of the job stays queued.
+ *   reconnect(), resumeJob(), discardJob()  after a stop off the plan (a lost link,
+ *            a restarted device, a HALT, a refusal): re-open the links, learn where
+ *            each board stopped, re-sync, and run (or drop) the rest of the job
+ *            (docs/architecture.md §10).
  *   estimate()  where the machine is now, by the author's clock.
  */
 import { MaxlError } from './errors.ts';
@@ -25,6 +29,8 @@ import { DeviceSession, type DeviceInfo, type SessionOptions } from './net/sessi
 import { Streamer, type StreamerEvent, type StreamerOptions } from './net/streamer.ts';
 import { feedLimit, type FeedLimit } from './net/linkFeedLimit.ts';
 import { WIRE_MIN_SEGMENT_S } from './trajectory/moves.ts';
+import { onPath, pathInOrder, planResume, pointAtTime, pointFromStatus, slotValuesAt, type BoardStop } from './net/recovery.ts';
+import { pointPosition } from './trajectory/restart.ts';
 
 export interface RuntimeOptions {
   links: Link[];
@@ -67,7 +73,31 @@ export type RuntimeEvent =
    * own (an event evaluator; device null), said by the `error` just before: every device
    * comes to rest on the path, with nothing more to run.
    */
-  | { type: 'streamStopped'; device: string | null };
+  | { type: 'streamStopped'; device: string | null }
+  /** reconnect() re-opened every link: the job can resume from `resumeFrom` (resumeJob()) or be dropped (discardJob()). */
+  | { type: 'reconnected'; report: RecoveryReport };
+
+/** Why the machine stopped off its plan: what recovery starts from. */
+export interface StopRecord {
+  reason: 'lost' | 'rebooted' | 'refused' | 'halted';
+  /** The device that caused it ('' for a HALT). */
+  device: string;
+  /** Author µs at which the author learned of it. */
+  at_us: number;
+}
+
+/** What reconnect() found and did. */
+export interface RecoveryReport {
+  stop: StopRecord;
+  /** Where each board that reads the trajectory stopped, and how that is known. */
+  boards: Array<{ device: string; position: number[]; source: BoardStop['source'] }>;
+  /** Where the job resumes (motion axes, mm); null if nothing of it was left. */
+  resumeFrom: number[] | null;
+  /** mm between the boards' stops (they rejoin first when > 0.001). */
+  spread_mm: number;
+  /** Segments queued to run on resumeJob(). */
+  remaining: number;
+}
 
 export interface RuntimeHost {
   config: ResolvedConfig;
@@ -87,11 +117,26 @@ export class Runtime {
   private listeners = new Set<(e: RuntimeEvent) => void>();
   private halted = false;
   private limit: FeedLimit | null = null;
+  private links: Link[];
+  /** Set when the machine stopped off its plan; cleared by resumeJob() or discardJob(). */
+  private stopRecord: StopRecord | null = null;
+  /** 'idle' until reconnect() starts, 'reconnecting' during it, 'reconnected' once the job can resume. */
+  private recovery: 'idle' | 'reconnecting' | 'reconnected' = 'idle';
+  /** Boards that restarted: author µs at which each was last known to run its old session (its last frame's sending). */
+  private readonly restarted = new Map<DeviceSession, number>();
+  /** The last stop each session reported, so that a repeated STATUS is not reported again. */
+  private readonly lastStop = new Map<DeviceSession, string>();
 
   constructor(host: RuntimeHost, options: RuntimeOptions) {
     this.host = host;
     this.options = options;
     this.scheduler = options.scheduler;
+    this.links = options.links;
+  }
+
+  /** Why the machine stopped off its plan, until the job resumes or is dropped; null while all is well. */
+  get stopped(): Readonly<StopRecord> | null {
+    return this.stopRecord;
   }
 
   /** The floor on segment durations that keeps every link within its bytes (null before begin()). */
@@ -101,7 +146,7 @@ export class Runtime {
 
   /** Sets the queue's floor on segment durations from the links' bytes/s and the subscriptions. */
   private limitFeedToLinks(plans: readonly DevicePlan[], infos: readonly DeviceInfo[]): void {
-    const links = this.options.links;
+    const links = this.links;
     const loads = plans
       .filter((p) => p.readsTrajectory)
       .map((p) => ({ device: p.device, positionSlots: p.positionSlots.length, bytesPerSecond: links[infos.findIndex((i) => i.name === p.device)]?.bytesPerSecond }));
@@ -120,9 +165,18 @@ export class Runtime {
   }
 
   async begin(): Promise<DeviceInfo[]> {
-    const { links, session: sessionOptions } = this.options;
-    if (links.length === 0) throw new MaxlError('DEVICE_UNAVAILABLE', 'no links to open: connect a device or choose a simulated machine');
-    for (const link of links) {
+    if (this.links.length === 0) throw new MaxlError('DEVICE_UNAVAILABLE', 'no links to open: connect a device or choose a simulated machine');
+    this.createSessions();
+    const infos = await Promise.all(this.sessions.map((s) => s.open()));
+    await this.subscribeAndSync(infos);
+    this.streamer = this.createStreamer(infos, new Map());
+    this.streamer.start();
+    return infos;
+  }
+
+  /** One session per link, its events wired to this runtime. */
+  private createSessions(): void {
+    for (const link of this.links) {
       const session: DeviceSession = new DeviceSession(
         link,
         this.scheduler,
@@ -130,13 +184,23 @@ export class Runtime {
           status: (s, at) => this.onStatus(session, s, at),
           samples: (m, at) => this.onSamples(session, m, at),
           lost: (reason) => this.onLost(session, reason),
-          rebooted: () => this.emit({ type: 'device', device: session.label, state: 'rebooted' }),
+          rebooted: () => {
+            // Its last frame before the restart left it about half a round trip before it came.
+            this.restarted.set(session, session.heardBefore_us - (session.rtt_us || 0) / 2);
+            this.emit({ type: 'device', device: session.label, state: 'rebooted' });
+          },
         },
-        sessionOptions,
+        this.options.session,
       );
       this.sessions.push(session);
     }
-    const infos = await Promise.all(this.sessions.map((s) => s.open()));
+  }
+
+  /**
+   * Checks the devices against the subscriptions (one error listing every
+   * mismatch), subscribes their readers, and syncs clocks before anything is timed.
+   */
+  private async subscribeAndSync(infos: DeviceInfo[]): Promise<void> {
     const names = infos.map((i) => i.name);
     const twice = names.filter((n, i) => names.indexOf(n) !== i);
     if (twice.length > 0) throw new MaxlError('SUBSCRIPTION_MISMATCH', `two devices are both named "${twice[0]}": give each board its own name`);
@@ -162,16 +226,135 @@ export class Runtime {
     for (const s of this.sessions) s.pingBurst(sync + 1_000_000);
     await this.scheduler.sleep(sync);
     for (const s of this.sessions) this.emit({ type: 'device', device: s.label, state: 'open' });
+  }
 
-    const bindings = plans
+  /** A streamer for the devices that read the trajectory; `p0` gives a device's slots where they stand, if not at the path's start. */
+  private createStreamer(infos: DeviceInfo[], p0: Map<string, number[]>): Streamer {
+    const bindings = this.plans
       .filter((p) => p.readsTrajectory)
       .map((p) => {
         const session = this.sessions[infos.findIndex((i) => i.name === p.device)];
-        return { name: p.device, device: session, positionSlots: p.positionSlots, eventSlots: p.eventSlots, capacity: (session.info as DeviceInfo).segmentCapacity };
+        return { name: p.device, device: session, positionSlots: p.positionSlots, eventSlots: p.eventSlots, capacity: (session.info as DeviceInfo).segmentCapacity, p0: p0.get(p.device) };
       });
-    this.streamer = new Streamer(this.host.queue, this.scheduler, bindings, (e) => this.onStreamer(e), this.options.streamer);
-    this.streamer.start();
-    return infos;
+    return new Streamer(this.host.queue, this.scheduler, bindings, (e) => this.onStreamer(e), this.options.streamer);
+  }
+
+  // --- recovery ---
+
+  /**
+   * After the machine stopped off its plan (a link lost, a device restarted, a
+   * HALT, a refused segment): re-opens every link (the same ones, or `links`
+   * in their place, the old ones then closed), asks each board where it stopped,
+   * opens fresh sessions, subscribes and re-syncs clocks, and rebuilds the queue
+   * from the stop: the rest of the job, nothing lost and nothing run twice. Nothing
+   * moves until resumeJob() (or discardJob()).
+   */
+  async reconnect(links?: Link[]): Promise<RecoveryReport> {
+    const stop = this.stopRecord;
+    if (!stop) throw new MaxlError('RECOVERY_ORDER', 'nothing to reconnect: the machine has not stopped off its plan (reconnect() follows a lost link, a restarted device, a HALT or a refused segment)');
+    if (this.recovery === 'reconnecting') throw new MaxlError('RECOVERY_ORDER', 'reconnect() is already under way');
+    if (this.recovery === 'reconnected') throw new MaxlError('RECOVERY_ORDER', 'already reconnected: call resumeJob() to go on, or discardJob() to drop the rest of the job');
+    if (links && links.length === 0) throw new MaxlError('DEVICE_UNAVAILABLE', 'no links to open: connect the devices again');
+    this.recovery = 'reconnecting';
+    const old = this.streamer;
+    const oldSessions = this.sessions.splice(0);
+    try {
+      old?.stop();
+      await Promise.all(oldSessions.map((s) => s.close(links !== undefined)));
+      if (links) this.links = links;
+      this.createSessions();
+      const probes = await Promise.all(this.sessions.map((s) => s.probe()));
+      const infos = await Promise.all(this.sessions.map((s) => s.open()));
+      const path = pathInOrder(old?.sentInOrder ?? [], this.untransmitted());
+      const stops: BoardStop[] = [];
+      infos.forEach((info, i) => {
+        const { status, expectedSeq } = probes[i];
+        const said = status && old ? pointFromStatus(status, (id) => old.segmentOnDevice(info.name, id, expectedSeq)) : null;
+        const fromStatus = said ? onPath(path, said) : null;
+        const lastAlive = [...this.restarted].find(([s]) => s.label === info.name)?.[1];
+        const estimate = !fromStatus && lastAlive !== undefined ? pointAtTime(path, lastAlive) : null;
+        if (fromStatus) stops.push({ device: info.name, point: fromStatus, source: 'status' });
+        else if (estimate) stops.push({ device: info.name, point: estimate, source: 'estimate' });
+      });
+      await this.subscribeAndSync(infos);
+      const reading = new Set(this.plans.filter((p) => p.positionSlots.length > 0).map((p) => p.device));
+      const boardStops = stops.filter((b) => reading.has(b.device));
+      const plan = planResume(path, boardStops);
+      const p0 = new Map<string, number[]>();
+      let remaining = this.host.queue.untransmittedCount;
+      if (plan) {
+        for (const b of boardStops) {
+          const slots = this.plans.find((p) => p.device === b.device)?.positionSlots ?? [];
+          p0.set(b.device, slotValuesAt(b.point, slots));
+        }
+        remaining = this.host.queue.restartFrom(plan.from, plan.rerun, plan.rejoinFrom).length;
+      }
+      this.restarted.clear();
+      this.lastStop.clear();
+      this.streamer = this.createStreamer(infos, p0);
+      this.recovery = 'reconnected';
+      const report: RecoveryReport = {
+        stop: { ...stop },
+        boards: boardStops.map((b) => ({ device: b.device, position: pointPosition(b.point), source: b.source })),
+        resumeFrom: plan ? pointPosition(plan.from) : null,
+        spread_mm: plan?.spread_mm ?? 0,
+        remaining,
+      };
+      this.emit({ type: 'reconnected', report });
+      return report;
+    } catch (err) {
+      // Leave the links free for another try.
+      const failed = this.sessions.splice(0);
+      await Promise.all(failed.map((s) => s.close(false)));
+      this.streamer = old;
+      this.recovery = 'idle';
+      throw err;
+    }
+  }
+
+  /** After reconnect(): streams the rest of the job from where the machine stopped. */
+  resumeJob(): void {
+    this.requireReconnected('resumeJob()');
+    this.clearStop();
+    this.requireStreamer().start();
+  }
+
+  /** After reconnect(): drops the rest of the job; the machine stays where it stopped, ready for new moves. */
+  discardJob(): void {
+    this.requireReconnected('discardJob()');
+    this.host.queue.cancelAll();
+    this.clearStop();
+    this.requireStreamer().start();
+  }
+
+  private requireReconnected(what: string): void {
+    if (!this.stopRecord) throw new MaxlError('RECOVERY_ORDER', `${what}: nothing to recover, the machine has not stopped off its plan`);
+    if (this.recovery !== 'reconnected') throw new MaxlError('RECOVERY_ORDER', `${what}: call reconnect() first, so that the devices are back, synced and know where they are`);
+  }
+
+  private clearStop(): void {
+    this.stopRecord = null;
+    this.recovery = 'idle';
+    this.halted = false;
+    this.streamStopped = false;
+  }
+
+  private untransmitted(): Segment[] {
+    const out: Segment[] = [];
+    for (let i = 0; i < this.host.queue.untransmittedCount; i++) out.push(this.host.queue.untransmittedAt(i) as Segment);
+    return out;
+  }
+
+  /** Records the first stop off the plan, stops streaming, and tells whoever waits for idle. */
+  private stopOffPlan(reason: StopRecord['reason'], device: string, words: string): void {
+    if (!this.stopRecord) this.stopRecord = { reason, device, at_us: this.scheduler.now() };
+    this.streamer?.stop(this.stoppedError(words));
+  }
+
+  private stoppedError(words?: string): MaxlError {
+    const stop = this.stopRecord;
+    const what = words ?? (stop ? `${stop.reason === 'halted' ? 'it was halted' : `${stop.device}: ${stop.reason}`}` : 'it stopped');
+    return new MaxlError('RECOVERY_ORDER', `the machine stopped off its plan (${what}): call reconnect(), then resumeJob() or discardJob()`);
   }
 
   /** Devices and their link health. */
@@ -210,40 +393,41 @@ export class Runtime {
   }
 
   whenIdle(): Promise<void> {
+    if (this.stopRecord) return Promise.reject(this.stoppedError());
     return this.requireStreamer().whenIdle();
   }
 
   pause(): Promise<void> {
+    if (this.stopRecord) return Promise.reject(this.stoppedError());
     return this.requireStreamer().pause();
   }
 
   resume(): void {
+    if (this.stopRecord) throw this.stoppedError();
     this.requireStreamer().resume();
   }
 
   cancel(): Promise<void> {
+    if (this.stopRecord) return Promise.reject(this.stoppedError());
     return this.requireStreamer().cancel();
   }
 
   /** Stops every device at once, where it is, and drops everything queued. */
+  /**
+   * Stops every device at once, where it is. Nothing more streams; the rest of the
+   * job stays queued for reconnect() and resumeJob(), or discardJob().
+   */
   async halt(): Promise<void> {
     this.halted = true;
-    this.streamer?.stop();
     // HALT goes out first: nothing the author's queue does may delay or prevent it.
     const halts = Promise.all(this.sessions.filter((s) => s.state === 'open').map((s) => s.send({ type: 'HALT', mode: 0, at: 0 })));
-    try {
-      this.host.queue.cancelAll();
-    } catch (err) {
-      // The queue refuses to drop a path it could not brake along; after HALT every
-      // device stands still where it is, so that check does not apply. Nothing more streams.
-      if (!(err instanceof MaxlError && err.code === 'CANNOT_STOP_IN_PATH')) throw err;
-    }
+    this.stopOffPlan('halted', '', 'it was halted');
     await halts;
   }
 
   /** Ends every session. */
   async end(): Promise<void> {
-    this.streamer?.stop();
+    this.streamer?.stop(new MaxlError('QUEUE_CLOSED', 'the session ended'));
     await Promise.all(this.sessions.map((s) => s.close()));
   }
 
@@ -275,7 +459,7 @@ export class Runtime {
     if (this.streamStopped) return;
     this.stopStream(
       e.device,
-      new MaxlError('DEVICE_REFUSED', `${e.device}: ${e.message.type} ${what}. Streaming stopped: every device comes to rest on the path. Start the job again from there.`),
+      new MaxlError('DEVICE_REFUSED', `${e.device}: ${e.message.type} ${what}. Streaming stopped: every device comes to rest on the path. Reconnect, then resume the job from there.`),
     );
   }
 
@@ -287,6 +471,7 @@ export class Runtime {
   private stopStream(device: string | null, error: MaxlError): void {
     if (this.streamStopped) return;
     this.streamStopped = true;
+    if (!this.stopRecord) this.stopRecord = { reason: 'refused', device: device ?? '', at_us: this.scheduler.now() };
     this.streamer?.stop(error);
     this.emit({ type: 'error', error });
     this.emit({ type: 'streamStopped', device });
@@ -296,10 +481,14 @@ export class Runtime {
   private onStatus(session: DeviceSession, s: MessageOf<'STATUS'>, _at: number): void {
     const state = nameOf(DeviceState, s.state);
     if (state === 'stopped' || state === 'halted') {
+      // A board repeats its STATUS every 100 ms while stopped: say each stop once.
+      const key = `${state} ${s.segmentId} ${s.sigma}`;
+      if (this.lastStop.get(session) === key) return;
+      this.lastStop.set(session, key);
       const seg = this.segmentForWireId(s.segmentId);
       const position = seg ? seg.start.map((p, i) => p + seg.unit[i] * seg.length * s.sigma) : null;
       this.emit({ type: 'stopped', device: session.label, segmentId: seg?.id ?? null, sigma: s.sigma, position });
-    }
+    } else this.lastStop.delete(session);
     // After a HALT or a refusal that stopped the stream, braking is what was asked for and was said.
     if (state === 'braking' && !this.halted && !this.streamStopped) {
       this.emit({
@@ -329,15 +518,17 @@ export class Runtime {
   }
 
   private onLost(session: DeviceSession, reason: string): void {
+    if (!this.sessions.includes(session)) return; // a session reconnect() replaced
+    const restarted = this.restarted.has(session);
+    // Stop timing everything: every device then brakes along the same geometry.
+    this.stopOffPlan(restarted ? 'rebooted' : 'lost', session.label, `${session.label}: ${reason}`);
     this.emit({ type: 'device', device: session.label, state: 'lost', reason });
     this.emit({
       type: 'error',
       error: new MaxlError(
         'LINK_LOST',
-        `${session.label}: ${reason}. Streaming stopped: every device brakes to rest on the path. Check the cable, then start again.`,
+        `${session.label}: ${reason}. Streaming stopped: every device brakes to rest on the path. Check the cable and power, then reconnect and resume the job.`,
       ),
     });
-    // Stop timing everything: every device then brakes along the same geometry.
-    this.streamer?.stop();
   }
 }

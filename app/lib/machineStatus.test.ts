@@ -2,7 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { machineStatus, needsRearm } from './machineStatus.ts';
 import type { JobProgress } from '../worker/protocol.ts';
 
-const job = (phase: JobProgress['phase']): JobProgress => ({ name: 'j', phase, totalSegments: 1, doneSegments: 0, totalLength: 1, doneLength: 0, eta_s: 1, elapsed_s: 0 });
+const job = (phase: JobProgress['phase']): JobProgress => ({ name: 'j', phase, totalSegments: 1, doneSegments: 0, totalLength: 1, doneLength: 0, eta_s: 1, elapsed_s: 0, resumable: false });
 
 describe('machineStatus', () => {
   it('says what a ready machine is doing', () => {

@@ -43,8 +43,8 @@ interface Run {
   phase: JobPhase;
   /** No more moves are fed once set (cancel, STOP, a failure). */
   stopped: boolean;
-  /** Aborted when the run stops: ends the feed's wait for room and its wait for the end. */
-  readonly abort: AbortController;
+  /** Gives up the run's waits (STOP, a halt, a lost machine); a resumed run gets a fresh one. */
+  abort: AbortController;
   /** Resolves the wait of a paused run, on resume. */
   wake: (() => void) | null;
   fed: number;
@@ -54,6 +54,8 @@ interface Run {
   doneLength: number;
   /** s of motion of the finished segments */
   motion_s: number;
+  /** Stopped off its plan (a lost link, a restart, STOP): resumable from where it stopped (resumeAfterStop). */
+  resumable: boolean;
 }
 
 /** Feed at most this long (ms) before letting commands in. */
@@ -91,6 +93,7 @@ export class JobRunner {
       doneLength: Math.min(r.totalLength, r.doneLength),
       eta_s,
       elapsed_s: r.motion_s,
+      resumable: r.resumable,
     };
   }
 
@@ -180,6 +183,7 @@ export class JobRunner {
     this.run = {
       ...r,
       phase: 'loading',
+      resumable: false,
       stopped: false,
       abort: new AbortController(),
       wake: null,
@@ -232,21 +236,54 @@ export class JobRunner {
     );
   }
 
-  /** STOP was pressed: the job is over. */
+  /** STOP was pressed: the job stops here (Resume takes it on from there, after reconnecting). */
   halted(): void {
     const r = this.run;
     if (!r || !this.active) return;
     this.stop(r);
     r.phase = 'halted';
+    r.resumable = true;
   }
 
-  /** The machine can no longer run the job (a device was lost, the runtime was replaced). */
-  abort(reason: string): void {
+  /**
+   * The machine can no longer run the job (a device was lost, the runtime was
+   * replaced). `resumable`: it stopped on its path, and the same author can take the
+   * rest on after reconnecting (resumeAfterStop).
+   */
+  abort(reason: string, resumable = false): void {
     const r = this.run;
     if (!r || !this.active) return;
     this.stop(r);
     r.phase = 'failed';
-    this.host.log('error', 'JOB_FAILED', `“${r.name}” stopped: ${reason}`);
+    r.resumable = resumable;
+    this.host.log('error', 'JOB_FAILED', `“${r.name}” stopped: ${reason}${resumable ? '. Press Resume to go on from where it stopped.' : ''}`);
+  }
+
+  /** Whether the last job stopped off its plan and can be resumed. */
+  get resumable(): boolean {
+    return this.run?.resumable === true && !this.active;
+  }
+
+  /**
+   * After maxl.reconnect() and maxl.resumeJob(): the job runs on, its queued rest
+   * first, then the moves not fed yet. Returns the job's name, or null if none can.
+   */
+  resumeAfterStop(): string | null {
+    const r = this.run;
+    if (!r || !this.resumable) return null;
+    r.resumable = false;
+    r.stopped = false;
+    r.phase = 'running';
+    r.abort = new AbortController();
+    void this.feed(r).catch((err) => {
+      if (!(err instanceof MaxlError && err.code === 'ABORTED')) this.fail(r, err);
+    });
+    return r.name;
+  }
+
+  /** The resumable job will not be resumed (Re-arm started a new author). */
+  dropResumable(): void {
+    if (this.run) this.run.resumable = false;
   }
 
   /** Forgets the last job (another machine was chosen: its progress means nothing there). */
@@ -272,7 +309,8 @@ export class JobRunner {
     const { maxl } = r;
     const { signal } = r.abort;
     let sliceStart = performance.now();
-    for (let i = 0; i < r.count; i++) {
+    // From the first move not fed yet (0, or after a resume).
+    for (let i = r.fed; i < r.count; i++) {
       const receipt = await maxl.addSegmentToQueue(r.moveAt(i), { signal });
       r.fed = i + 1;
       if (i === 0) r.firstMoveId = receipt.moveId;

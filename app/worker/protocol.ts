@@ -127,6 +127,8 @@ export interface JobProgress {
   eta_s: number;
   /** s of motion so far (pauses excluded) */
   elapsed_s: number;
+  /** It stopped off its plan (a lost link, a restart, STOP) and Resume can take it on from there. */
+  resumable: boolean;
 }
 
 /** What one hold-to-jog release measured. */
@@ -251,6 +253,8 @@ export type Command =
   | { type: 'job-pause' }
   | { type: 'job-resume' }
   | { type: 'job-cancel' }
+  /** After a stop off the plan: reconnect the same author and run the rest of the stopped job. */
+  | { type: 'job-recover' }
   | { type: 'frame' };
 
 // ---------------------------------------------------------------------------

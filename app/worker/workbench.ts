@@ -192,6 +192,9 @@ export class Workbench {
       case 'job-cancel':
         this.jobs.cancel();
         return;
+      case 'job-recover':
+        void this.recoverJob();
+        return;
     }
   }
 
@@ -408,6 +411,7 @@ export class Workbench {
     if (!maxl) return;
     this.maxl = null;
     this.jobs.abort('the machine was reconfigured');
+    this.jobs.dropResumable();
     this.jog.reset();
     this.toolOwner = null;
     for (const tool of this.tools.values()) tool.authorChanged(null);
@@ -430,7 +434,7 @@ export class Workbench {
     } else if (e.type === 'device') {
       this.devicesChanged = true;
       if (e.state === 'lost' || e.state === 'rebooted') {
-        this.jobs.abort(`${e.device} was lost`);
+        this.jobs.abort(`${e.device} was lost`, true);
         this.jog.reset();
         if (this.phase === 'ready') this.setPhase('not-ready', `${e.device}: ${e.reason ?? e.state}. The machine brakes to rest on the path. Check the cable and power, then press Re-arm.`);
       }
@@ -457,7 +461,7 @@ export class Workbench {
    */
   private stoppedByItself(what: string): void {
     if (this.phase !== 'ready') return;
-    this.jobs.abort(what);
+    this.jobs.abort(what, this.maxl?.stopped != null);
     this.jog.reset();
     this.toolOwner = null;
     for (const tool of this.tools.values()) tool.stopped();
@@ -545,6 +549,39 @@ export class Workbench {
       return;
     }
     this.jobs.start(request, this.maxl, this.origin);
+  }
+
+  /**
+   * Resume after a stop off the plan (a lost link, a restarted board, STOP): the
+   * same author reconnects to every device (fresh sessions on the same ports), each
+   * board says where it stopped, clocks re-sync, and the rest of the job runs from
+   * there (core: maxl.reconnect(), maxl.resumeJob()). Re-arm instead drops the job.
+   */
+  private async recoverJob(): Promise<void> {
+    const maxl = this.maxl;
+    if (!maxl || !maxl.stopped || !this.jobs.resumable) {
+      this.log('warning', 'NOTHING_TO_RESUME', 'Nothing to resume: no job stopped off its path. Start a job, or press Re-arm.');
+      return;
+    }
+    const runtimeId = this.runtimeId;
+    this.setPhase('connecting', 'Reconnecting to resume the job…');
+    try {
+      const report = await maxl.reconnect(this.devices.map((d) => d.port.session()));
+      if (runtimeId !== this.runtimeId) return;
+      this.learnDevices(maxl);
+      maxl.resumeJob();
+      const name = this.jobs.resumeAfterStop();
+      this.lastError = '';
+      this.setPhase('ready', '');
+      const from = report.resumeFrom ? ` from ${report.resumeFrom.map((v) => v.toFixed(3)).join(', ')} mm` : '';
+      const estimated = report.boards.some((b) => b.source === 'estimate') ? ' (a restarted board’s position is estimated from the plan: home the machine if exactness matters)' : '';
+      this.log('info', 'RESUMED', `Resumed “${name}”${from}: ${report.remaining} segments left${estimated}.`);
+    } catch (err) {
+      if (runtimeId !== this.runtimeId) return;
+      const words = errorWords(err);
+      this.log('error', words.code, words.message);
+      this.setPhase('stopped', `${words.message}\nPress Resume to try again, or Re-arm to drop the job.`);
+    }
   }
 
   /** STOP: every device stops where it is, now. */

@@ -58,6 +58,8 @@ export function geometryMessages(
   slots: readonly PositionSlot[],
   firstId: number,
   withP0: boolean,
+  /** Where each slot starts, if not at the first segment's start (a board resuming from where it stopped). */
+  p0Values?: readonly number[],
 ): MessageOf<'GEOMETRY'>[] {
   const out: MessageOf<'GEOMETRY'>[] = [];
   const perSegment = 4 + 4 * slots.length;
@@ -68,7 +70,7 @@ export function geometryMessages(
     const batch = segments.slice(i, i + Math.min(room, 255));
     const geometry: GeometrySegment[] = batch.map((seg) => ({ length: seg.length, p1: slots.map((s) => toWirePosition(positionAt(seg, s, true))) }));
     const message: MessageOf<'GEOMETRY'> = { type: 'GEOMETRY', firstId: (firstId + i) & 0xffff, count: batch.length, flags: p0 ? HAS_P0 : 0, segments: geometry };
-    if (p0) message.p0 = slots.map((s) => toWirePosition(positionAt(segments[0], s, false)));
+    if (p0) message.p0 = p0Values ? p0Values.map(toWirePosition) : slots.map((s) => toWirePosition(positionAt(segments[0], s, false)));
     out.push(message);
     i += batch.length;
   }

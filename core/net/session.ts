@@ -41,6 +41,12 @@ export interface DeviceInfo {
 
 export type { SendResult };
 
+/** What probe() learned: where the device is, and the sequence number it expected next (null: no session). */
+export interface ProbeResult {
+  status: MessageOf<'STATUS'> | null;
+  expectedSeq: number | null;
+}
+
 export interface SessionOptions {
   /** ms-scale timings, in µs */
   helloTimeout_us: number;
@@ -105,12 +111,19 @@ export class DeviceSession implements StreamDevice {
   lastStatus: MessageOf<'STATUS'> | null = null;
   /** Frames resent so far (diagnostics). */
   resends = 0;
+  /** The sequence number of the last message given to send(). */
+  lastSentSeq = 0;
   state: 'closed' | 'opening' | 'open' | 'lost' = 'closed';
 
   private readonly scheduler: Scheduler;
   private readonly options: SessionOptions;
   private readonly events: SessionEvents;
   private writer: WritableStreamDefaultWriter<Uint8Array> | null = null;
+  private reader: ReadableStreamDefaultReader<Uint8Array> | null = null;
+  /** While probe() waits: what it does with the device's answers. */
+  private probing: { onAnswer(seq: number, nack: MessageOf<'NACK'> | null, statusBefore: MessageOf<'STATUS'> | null): void } | null = null;
+  /** While probing: the packet just before this one, if it was a STATUS (a request's STATUS comes right before its ack). */
+  private probeStatus: MessageOf<'STATUS'> | null = null;
   private writeChain: Promise<void> = Promise.resolve();
   private nextSeq = 1;
   /** Frames sent and not yet acknowledged, oldest first, then frames waiting for the window. */
@@ -118,6 +131,8 @@ export class DeviceSession implements StreamDevice {
   private waiting: Outgoing[] = [];
   private receiver: FrameReceiver;
   private lastHeard = 0;
+  /** When the frame before the last one came (author µs). */
+  private heardBefore = 0;
   /** The session's timers, by job: one of each at most. */
   private readonly timers: Record<'hello' | 'helloTimeout' | 'ping' | 'silence' | 'resend', Timer | null> = {
     hello: null,
@@ -148,6 +163,15 @@ export class DeviceSession implements StreamDevice {
     return this.info?.name ?? this.link.label ?? 'device';
   }
 
+  /**
+   * When the device last sent a frame before the latest one (author µs, at its
+   * arrival): after a restart is detected (the latest frame), the last moment it was
+   * known to run its old session.
+   */
+  get heardBefore_us(): number {
+    return this.heardBefore;
+  }
+
   /** Round-trip time, µs (median of recent pings). */
   get rtt_us(): number {
     return this.clock.rtt;
@@ -160,9 +184,8 @@ export class DeviceSession implements StreamDevice {
    */
   async open(): Promise<DeviceInfo> {
     this.state = 'opening';
-    this.writer = this.link.writable.getWriter();
+    this.attach();
     this.lastHeard = this.scheduler.now();
-    void this.readLoop();
     const info = await new Promise<DeviceInfo>((resolve, reject) => {
       this.pendingHello = { resolve, reject, readers: [] };
       const hello = encodeFrame(0, { type: 'HELLO_REQUEST', protocol: PROTOCOL_VERSION });
@@ -194,6 +217,7 @@ export class DeviceSession implements StreamDevice {
     if (this.state !== 'open') return Promise.reject(new MaxlError('DEVICE_UNAVAILABLE', `${this.label}: the session is ${this.state}`));
     return new Promise((resolve) => {
       const seq = this.nextSeq;
+      this.lastSentSeq = seq;
       this.nextSeq = (this.nextSeq + 1) & 0xff;
       const out: Outgoing = { seq, frame: encodeFrame(seq, message), message, sentAt: 0, firstSentAt: NaN, resolve };
       this.waiting.push(out);
@@ -242,19 +266,82 @@ export class DeviceSession implements StreamDevice {
     return this.inFlight.length + this.waiting.length;
   }
 
-  /** Stops timers and releases the link. */
-  async close(): Promise<void> {
+  /**
+   * Asks a device, before this session says hello, where it is: a STATUS, read
+   * without disturbing it. The device may still hold an older session (after a
+   * link cut) whose next sequence number this session does not know: a
+   * STATUS_REQUEST out of order is answered OUT_OF_ORDER with the number
+   * expected (or, on a frame cut in half by the cut, BAD_CRC with it), and is
+   * sent again with it; a duplicate's old answer says nothing, and the request
+   * goes again 16 numbers on (docs/protocol.md §3). Resolves with the STATUS and
+   * the sequence number the device expected (every frame before it was handled),
+   * or with nulls when the device has no session (it restarted: it knows nothing
+   * of the path). Rejects with DEVICE_UNAVAILABLE if it does not answer.
+   */
+  probe(timeout_us = 500_000): Promise<ProbeResult> {
+    if (this.state !== 'closed') throw new MaxlError('RECOVERY_ORDER', `${this.label}: probe() comes before open()`);
+    this.attach();
+    return new Promise((resolve, reject) => {
+      let timer: Timer | null = null;
+      let asked = 0;
+      const finish = (result: ProbeResult | Error) => {
+        this.probing = null;
+        timer?.cancel();
+        if (result instanceof Error) reject(result);
+        else resolve(result);
+      };
+      const ask = (seq: number) => {
+        asked = seq & 0xff;
+        this.probeStatus = null;
+        this.write(encodeFrame(asked, { type: 'STATUS_REQUEST' }));
+      };
+      this.probing = {
+        onAnswer: (seq, nack, statusBefore) => {
+          const reason = nack ? nameOf(NackReason, nack.reason) : null;
+          // Acked right after a STATUS: the request was handled as new, so the device
+          // expected its number. (A board that is not idle also sends STATUS every
+          // 100 ms: only the one just before the ack is the answer.)
+          if (reason === 'OUT_OF_ORDER' && nack!.detail === NO_SESSION_DETAIL) finish({ status: null, expectedSeq: null });
+          else if (reason === 'BAD_CRC') ask(nack!.seq); // it names the number expected
+          else if (seq !== asked) return; // an answer to the old session's traffic, late
+          else if (!nack && statusBefore) finish({ status: statusBefore, expectedSeq: asked });
+          else if (reason === 'OUT_OF_ORDER') ask(nack!.detail);
+          else ask(seq + 16); // a duplicate's old answer, or a refusal: try further on
+        },
+      };
+      timer = this.scheduler.after(timeout_us, () =>
+        finish(new MaxlError('DEVICE_UNAVAILABLE', `${this.link.label ?? 'a device'} did not answer a status request within ${timeout_us / 1000} ms: is it connected and powered?`)),
+      );
+      ask(0);
+    });
+  }
+
+  /**
+   * Stops timers and releases the link's streams, so that another session can take
+   * the link over; `closeLink` (default true) also closes the link itself.
+   */
+  async close(closeLink = true): Promise<void> {
     this.stopTimers();
     this.state = 'closed';
-    for (const o of [...this.inFlight, ...this.waiting]) o.resolve({ ok: false, reason: 'UNKNOWN_MESSAGE', detail: 0 });
+    this.probing = null;
+    for (const o of [...this.inFlight, ...this.waiting]) o.resolve({ ok: false, reason: 'UNKNOWN_MESSAGE', detail: 0, unsent: true });
     this.inFlight = [];
     this.waiting = [];
-    try {
-      this.writer?.releaseLock();
-    } catch {
-      // already released
+    // Writes already chained go out first.
+    await this.writeChain.catch(() => undefined);
+    this.detach();
+    if (closeLink) await this.link.close?.();
+  }
+
+  /** Takes the link's writer and starts reading, once per session. */
+  private attach(): void {
+    if (this.writer) return;
+    if (this.link.writable.locked || this.link.readable.locked) {
+      throw new MaxlError('DEVICE_UNAVAILABLE', `${this.link.label ?? 'a link'} is in use by another session: end() the author that holds it, or reconnect() with it`);
     }
-    await this.link.close?.();
+    this.writer = this.link.writable.getWriter();
+    this.reader = this.link.readable.getReader();
+    void this.readLoop(this.reader);
   }
 
   // --- sending ---
@@ -313,8 +400,7 @@ export class DeviceSession implements StreamDevice {
 
   // --- receiving ---
 
-  private async readLoop(): Promise<void> {
-    const reader = this.link.readable.getReader();
+  private async readLoop(reader: ReadableStreamDefaultReader<Uint8Array>): Promise<void> {
     try {
       for (;;) {
         const { value, done } = await reader.read();
@@ -325,12 +411,17 @@ export class DeviceSession implements StreamDevice {
     } catch (err) {
       this.lose(`the link failed: ${(err as Error).message}`);
     } finally {
-      reader.releaseLock();
+      try {
+        reader.releaseLock();
+      } catch {
+        // close() released it
+      }
     }
   }
 
   private onPacket(p: RawPacket): void {
     const now = this.scheduler.now();
+    this.heardBefore = this.lastHeard;
     this.lastHeard = now;
     let message: Message;
     try {
@@ -342,6 +433,13 @@ export class DeviceSession implements StreamDevice {
         return;
       }
       throw err;
+    }
+    if (this.probing) {
+      const before = this.probeStatus;
+      this.probeStatus = message.type === 'STATUS' ? message : null;
+      if (message.type === 'ACK') this.probing.onAnswer(message.ackSeq, null, before);
+      else if (message.type === 'NACK') this.probing.onAnswer(message.seq, message, before);
+      return;
     }
     switch (message.type) {
       case 'HELLO':
@@ -543,10 +641,30 @@ export class DeviceSession implements StreamDevice {
       this.pendingHello.reject(new MaxlError('DEVICE_UNAVAILABLE', `${this.label}: ${reason}`));
       this.pendingHello = null;
     }
-    for (const o of [...this.inFlight, ...this.waiting]) o.resolve({ ok: false, reason: 'UNKNOWN_MESSAGE', detail: 0 });
+    for (const o of [...this.inFlight, ...this.waiting]) o.resolve({ ok: false, reason: 'UNKNOWN_MESSAGE', detail: 0, unsent: true });
     this.inFlight = [];
     this.waiting = [];
+    this.detach();
     this.events.lost?.(reason);
+  }
+
+  /** Releases the link's streams (without closing the link), so that another session can take it over. */
+  private detach(): void {
+    const writer = this.writer;
+    const reader = this.reader;
+    this.writer = null;
+    this.reader = null;
+    try {
+      writer?.releaseLock();
+    } catch {
+      // already released
+    }
+    try {
+      // A read still pending rejects: the read loop then ends quietly (the session is over).
+      reader?.releaseLock();
+    } catch {
+      // already released
+    }
   }
 }
 

@@ -11,8 +11,12 @@ import type { ClockMap } from './clockMap.ts';
 import type { Message } from './messages.ts';
 import type { NackReasonName } from './protocol.ts';
 
-/** How a sent frame ended: acknowledged, or refused with a reason (the device consumed it). */
-export type SendResult = { ok: true } | { ok: false; reason: NackReasonName; detail: number };
+/**
+ * How a sent frame ended: acknowledged, or refused with a reason (the device
+ * consumed it). `unsent` marks a frame the session gave up on when it ended (lost
+ * or closed): the device may or may not have handled it.
+ */
+export type SendResult = { ok: true } | { ok: false; reason: NackReasonName; detail: number; unsent?: true };
 
 export interface StreamDevice {
   /** Whether the session is open (not opening, lost or closed). */
@@ -29,6 +33,8 @@ export interface StreamDevice {
    * false, and nothing changes.
    */
   takeEventRoom(count: number): boolean;
+  /** The sequence number of the last message given to send() (recovery maps a device's next expected one back to the frames it handled). */
+  readonly lastSentSeq: number;
   /** Sends a message reliably and in order; resolves once the device acknowledged or refused it. */
   send(message: Message): Promise<SendResult>;
 }

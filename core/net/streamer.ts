@@ -49,6 +49,8 @@ export interface DeviceBinding {
   eventSlots: Map<number, number>;
   /** queue depth the device reported */
   capacity: number;
+  /** Where each position slot stands, for the first GEOMETRY, when not at the path's start (a resumed job). */
+  p0?: number[];
 }
 
 export interface StreamerOptions {
@@ -97,9 +99,13 @@ interface DeviceState {
   needP0: boolean;
   /** event entries waiting for room on the device */
   pendingEvents: MessageOf<'EVENTS'>[];
+  /** The last GEOMETRY messages given to the session, with their sequence numbers and segments (newest last). */
+  geometryLog: Array<{ seq: number; firstId: number; segments: Segment[]; result: 'pending' | 'ok' | 'refused' }>;
 }
 
 const MIN_SPLIT_MM = 0.01;
+/** Segments the wire log keeps (segmentForWireId, sentInOrder): far more than a device queue holds. */
+const WIRE_LOG = 2048;
 /** Segments nearTailRest() looks at after the next one, at most. */
 const TAIL_SCAN = 64;
 
@@ -122,6 +128,14 @@ export class Streamer {
   private idleWaiters: Array<{ resolve: () => void; reject: (reason: Error) => void }> = [];
   /** Why streaming stopped for good, if it did (a refusal): whenIdle() rejects with it. */
   private stopReason: Error | null = null;
+  /**
+   * Every segment whose geometry went out, in order, by wire id (the last
+   * WIRE_LOG of them): a device's STATUS names where it stopped by wire id, and
+   * after a stop off the plan, recovery needs that segment and the ones after it
+   * even once the author has retired them (core/runtime.ts, reconnect()).
+   */
+  private readonly wireLog = new Map<number, Segment>();
+  private readonly wireOrder: Array<{ seg: Segment; id: number }> = [];
 
   constructor(
     queue: TrajectoryQueue,
@@ -132,7 +146,7 @@ export class Streamer {
   ) {
     this.queue = queue;
     this.scheduler = scheduler;
-    this.devices = devices.map((binding) => ({ binding, timedEnd: null, timedEndAuthor: NaN, needP0: true, pendingEvents: [] }));
+    this.devices = devices.map((binding) => ({ binding, timedEnd: null, timedEndAuthor: NaN, needP0: true, pendingEvents: [], geometryLog: [] }));
     this.onEvent = onEvent;
     this.options = { ...DEFAULT_STREAMER, ...options };
   }
@@ -164,9 +178,9 @@ export class Streamer {
     this.schedulePump(0);
   }
 
-  /** Stops sending anything more; devices finish their timed path and brake along their geometry. */
   /**
-   * Stops streaming for good. With a `reason` (the stream broke off mid-job), every
+   * Stops sending anything more; devices finish their timed path and brake along
+   * their geometry. Stops streaming for good. With a `reason` (the stream broke off mid-job), every
    * wait for idle rejects with it now and later: the job will not run to its end.
    */
   stop(reason?: Error): void {
@@ -178,6 +192,7 @@ export class Streamer {
     }
     this.running = false;
     this.unsubscribe?.();
+    this.unsubscribe = null;
     this.tickTimer?.cancel();
     this.tickTimer = null;
   }
@@ -227,9 +242,46 @@ export class Streamer {
     });
   }
 
-  /** The segment a device numbers `wireId`, among those the devices hold. */
+  /** The segment a device numbers `wireId`: among those the devices hold, else the last one sent under that id. */
   segmentForWireId(wireId: number): Segment | undefined {
-    return this.sent.find((s) => this.wireIds.get(s) === wireId);
+    return this.sent.find((s) => this.wireIds.get(s) === wireId) ?? this.wireLog.get(wireId);
+  }
+
+  /**
+   * The segment device `name` holds as `wireId`. Ids are reused after a
+   * REPLACE_TAIL, so it is the last GEOMETRY naming it that the device handled
+   * and did not refuse (one whose answer was lost counts as taken): every frame before `expectedSeq` (its next sequence number, from a probe after
+   * the link came back); null trusts every frame sent.
+   */
+  segmentOnDevice(name: string, wireId: number, expectedSeq: number | null): Segment | undefined {
+    const d = this.devices.find((x) => x.binding.name === name);
+    if (!d) return this.segmentForWireId(wireId);
+    // Frames sent after the last one the device handled: (last − expected + 1) mod 256 of them.
+    const last = d.binding.device.lastSentSeq;
+    const unhandled = expectedSeq === null ? 0 : (last - expectedSeq + 1) & 0xff;
+    for (let i = d.geometryLog.length - 1; i >= 0; i--) {
+      const entry = d.geometryLog[i];
+      // Not handled yet, or refused (a REPLACE_TAIL too late, its new geometry then out of order): not what it holds.
+      if (((last - entry.seq) & 0xff) < unhandled || entry.result === 'refused') continue;
+      const k = (wireId - entry.firstId) & 0xffff;
+      if (k < entry.segments.length) return entry.segments[k];
+    }
+    return this.segmentForWireId(wireId);
+  }
+
+  /** Segments whose geometry went out, in the order sent (the last WIRE_LOG). */
+  get sentInOrder(): Segment[] {
+    return this.wireOrder.map((w) => w.seg);
+  }
+
+  private logWire(seg: Segment, wireId: number): void {
+    this.wireLog.set(wireId, seg);
+    this.wireOrder.push({ seg, id: wireId });
+    if (this.wireOrder.length > WIRE_LOG * 2) {
+      for (const old of this.wireOrder.splice(0, this.wireOrder.length - WIRE_LOG)) {
+        if (this.wireLog.get(old.id) === old.seg) this.wireLog.delete(old.id);
+      }
+    }
   }
 
   // --- the pump ---
@@ -430,17 +482,32 @@ export class Streamer {
     const firstId = this.nextWireId;
     for (const s of fresh) {
       this.wireIds.set(s, this.nextWireId);
+      this.logWire(s, this.nextWireId);
       this.nextWireId = (this.nextWireId + 1) & 0xffff;
     }
     for (const d of this.devices) {
       if (!d.binding.device.isOpen) continue;
       const messages: Message[] = [];
       if (fresh.length > 0) {
-        messages.push(...geometryMessages(fresh, d.binding.positionSlots, firstId, d.needP0));
+        messages.push(...geometryMessages(fresh, d.binding.positionSlots, firstId, d.needP0, d.needP0 ? d.binding.p0 : undefined));
         d.needP0 = false;
       }
       if (newlyTimed.length > 0) messages.push(...this.timingFor(d, newlyTimed));
-      for (const m of messages) this.post(d, m);
+      for (const m of messages) {
+        if (m.type !== 'GEOMETRY') {
+          this.post(d, m);
+          continue;
+        }
+        const from = (m.firstId - firstId) & 0xffff;
+        const entry = { seq: 0, firstId: m.firstId, segments: fresh.slice(from, from + m.count), result: 'pending' as 'pending' | 'ok' | 'refused' };
+        this.post(d, m, (r) => {
+          if (r.ok) entry.result = 'ok';
+          else if (!r.unsent) entry.result = 'refused';
+        });
+        entry.seq = d.binding.device.lastSentSeq;
+        d.geometryLog.push(entry);
+        if (d.geometryLog.length > WIRE_LOG) d.geometryLog.splice(0, d.geometryLog.length - WIRE_LOG / 2);
+      }
       this.flushEvents(d);
     }
   }
@@ -484,10 +551,12 @@ export class Streamer {
     }
   }
 
-  private post(d: DeviceState, m: Message): void {
+  private post(d: DeviceState, m: Message, onResult?: (r: SendResult) => void): void {
     d.binding.device.send(m).then(
       (r: SendResult) => {
-        if (!r.ok) this.onEvent({ type: 'refused', device: d.binding.name, reason: r.reason, detail: r.detail, message: m });
+        onResult?.(r);
+        // A frame the session gave up on as it ended was not refused: the runtime hears of the end itself.
+        if (!r.ok && !r.unsent) this.onEvent({ type: 'refused', device: d.binding.name, reason: r.reason, detail: r.detail, message: m });
         if (d.pendingEvents.length > 0) this.flushEvents(d);
       },
       () => {

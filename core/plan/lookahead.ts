@@ -258,6 +258,16 @@ export class LookaheadPlanner {
   }
 
   /**
+   * Removes every unlocked block and forgets the last locked exit: the next block
+   * appended starts from rest (a job resumed after the machine stopped off its plan).
+   */
+  clearToRest(): number {
+    const removed = this.truncate(0);
+    this.frontEntry2 = 0;
+    return removed;
+  }
+
+  /**
    * Whether the fixed front speed can still be honoured: it must not exceed the
    * front block's entry cap (after a replace changed the corner), and the machine
    * must still be able to come to rest by the end of the known path (after a

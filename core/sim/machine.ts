@@ -68,6 +68,14 @@ export interface SimulatedMachine {
   cut(name: string, at_us?: number): void;
   /** Reconnects a cut link from now on. */
   restore(name: string): void;
+  /**
+   * Restarts device `name` now, as its reset button would: a fresh instance of its
+   * firmware (its RAM, queue and session gone; micros() from 0), on the same link,
+   * pins and crystal. Its motors stop dead where they are.
+   */
+  reboot(name: string): Promise<void>;
+  /** Makes device `name`'s µs counter jump by `delta_us` now (a clock fault). */
+  jumpClock(name: string, delta_us: number): void;
   /** Changes one direction of a link's delays, jitter, corruption or loss from now on. */
   configureLink(name: string, direction: 'toDevice' | 'toAuthor', change: Partial<LinkDirectionConfig>): void;
   /** What every link did so far. */
@@ -93,16 +101,8 @@ export async function createSimulatedMachine(
   const modules = await Promise.all(preset.devices.map((d) => options.loader(d.example)));
   const simLinks: Record<string, SimulatedLink> = {};
   const devices: Record<string, WasmDevice> = {};
-  for (const [i, spec] of preset.devices.entries()) {
-    const overrides = options.links?.[spec.name] ?? {};
-    const link = new SimulatedLink(scheduler, `sim:${spec.name}`, {
-      ...spec.link,
-      ...overrides,
-      toDevice: { ...spec.link?.toDevice, ...overrides.toDevice },
-      toAuthor: { ...spec.link?.toAuthor, ...overrides.toAuthor },
-      seed: overrides.seed ?? spec.link?.seed ?? deriveSeed(seed, `link/${spec.name}`),
-    });
-    simLinks[spec.name] = link;
+  const bootDevice = async (i: number, link: SimulatedLink): Promise<WasmDevice> => {
+    const spec = preset.devices[i];
     const device = await WasmDevice.instantiate(modules[i], {
       name: spec.name,
       clock: options.clocks?.[spec.name] ?? spec.clock,
@@ -113,7 +113,19 @@ export async function createSimulatedMachine(
       outputLogSize: options.outputLogSize,
     });
     if (spec.firmwareName && spec.firmwareName !== spec.name) device.renameString(spec.firmwareName, spec.name);
-    devices[spec.name] = device;
+    return device;
+  };
+  for (const [i, spec] of preset.devices.entries()) {
+    const overrides = options.links?.[spec.name] ?? {};
+    const link = new SimulatedLink(scheduler, `sim:${spec.name}`, {
+      ...spec.link,
+      ...overrides,
+      toDevice: { ...spec.link?.toDevice, ...overrides.toDevice },
+      toAuthor: { ...spec.link?.toAuthor, ...overrides.toAuthor },
+      seed: overrides.seed ?? spec.link?.seed ?? deriveSeed(seed, `link/${spec.name}`),
+    });
+    simLinks[spec.name] = link;
+    devices[spec.name] = await bootDevice(i, link);
   }
   const runner = new DeviceRunner(scheduler, Object.values(devices), options.chunk_us, options.onError);
   for (const [name, link] of Object.entries(simLinks)) link.device.onReceive((bytes) => runner.deliver(devices[name], bytes));
@@ -140,6 +152,20 @@ export async function createSimulatedMachine(
     },
     cut: (name, at_us) => linkOf(name).cut(at_us),
     restore: (name) => linkOf(name).restore(),
+    reboot: async (name) => {
+      const link = linkOf(name);
+      const old = devices[name];
+      const next = await bootDevice(names.indexOf(name), link);
+      // micros() counts from 0 again after a reset (an AVR keeps its count in RAM).
+      next.clock.jump(-next.clock.deviceTimeAt(scheduler.now()));
+      devices[name] = next;
+      runner.replace(old, next);
+    },
+    jumpClock: (name, delta_us) => {
+      linkOf(name);
+      runner.runTo(scheduler.now());
+      devices[name].clock.jump(delta_us);
+    },
     configureLink: (name, direction, change) => linkOf(name).configure(direction, change),
     linkReports: () => Object.fromEntries(Object.entries(simLinks).map(([n, l]) => [n, l.report()])),
     stop: async () => {

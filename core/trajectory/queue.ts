@@ -23,6 +23,7 @@ import { buildEventTracks, type EventTrack } from './events.ts';
 import { segmentsForMove, tailAfter, validateMove, ZERO_LENGTH_MM, type Move, type PathTail, type ValidatedMove } from './moves.ts';
 import type { QueueEventType, QueueView } from './queueView.ts';
 import { Segment, type SegmentState } from './segment.ts';
+import { copySegment, pointPosition, rejoinSegment, remainderOf, type PathPoint } from './restart.ts';
 
 export type { QueueEventType };
 
@@ -602,6 +603,61 @@ export class TrajectoryQueue implements QueueView {
     }
     this.emit('historical', retired);
     return retired;
+  }
+
+  /**
+   * Rebuilds the path for a job resumed after the machine stopped off its plan (a
+   * link lost, a device rebooted, a HALT, a refused segment: core/runtime.ts):
+   *   - `stop`: where the path resumes (the point the readers stopped at, the one
+   *     furthest back when they stopped apart);
+   *   - `rerun`: the segments transmitted after stop.segment that never ran, in path
+   *     order; they are run again as untimed copies;
+   *   - `rejoinFrom`: when boards stopped apart, the furthest point one reached: a
+   *     straight segment from there to `stop` comes first, on which they meet.
+   * The rest of stop.segment follows, then the copies, then every untransmitted
+   * segment after it, unchanged: nothing is lost and nothing runs twice. The whole
+   * path is replanned from rest; transmitted segments left behind become historical.
+   * Returns the untransmitted segments, in order.
+   */
+  restartFrom(stop: PathPoint, rerun: readonly Segment[], rejoinFrom: number[] | null): Segment[] {
+    const first = this.live.length - this.untransmitted;
+    const stopIndex = this.live.indexOf(stop.segment);
+    const kept = stopIndex >= first ? this.live.slice(stopIndex + 1) : this.live.slice(first);
+    const keptSet = new Set(kept);
+    const dropped = this.live.slice(first).filter((seg) => !keptSet.has(seg));
+    // Event values where the path resumes: as the stopped segment began (its own
+    // changes are sent again with its remainder), else at the transmitted path's end.
+    const events = stop.segment.eventsAtStart ? [...stop.segment.eventsAtStart] : [...this.lockedEventValues];
+
+    const fresh: Segment[] = [];
+    if (rejoinFrom) fresh.push(rejoinSegment(this.config, rejoinFrom, stop, this.nextSegmentId++));
+    const rest = remainderOf(stop, this.nextSegmentId);
+    if (rest) {
+      this.nextSegmentId++;
+      fresh.push(rest);
+    }
+    for (const seg of rerun) fresh.push(copySegment(seg, this.nextSegmentId++));
+
+    for (let i = this.head; i < first; i++) this.live[i].state = 'historical';
+    for (const seg of kept) {
+      seg.state = 'unplanned';
+      seg.untime();
+    }
+    this.newlyPlanned = [];
+    this.planner.clearToRest();
+    this.live = [...fresh, ...kept];
+    this.head = 0;
+    this.untransmitted = this.live.length;
+    for (const seg of this.live) this.planner.appendBlock(seg);
+    this.lockedExit2 = 0;
+    this.lockedEventValues = events;
+    if (this.live.length === 0) Object.assign(this.tail, { position: pointPosition(stop), unit: null, cruise2: 0 });
+    this.emit('removed', dropped);
+    this.emit('replanned', kept);
+    this.emit('added', fresh);
+    this.flushPlanned();
+    this.wakeWaiters();
+    return this.live.slice();
   }
 
   // --- internals ---

@@ -18,11 +18,24 @@ export interface DeviceClockConfig {
 const WRAP = 4294967296;
 
 export class DeviceClock {
-  constructor(readonly config: DeviceClockConfig) {}
+  /** The offset in force: the configured one, plus every jump so far. */
+  private offset_us: number;
+
+  constructor(readonly config: DeviceClockConfig) {
+    this.offset_us = config.offset_us;
+  }
+
+  /**
+   * A fault: the counter jumps by `delta_us` (a glitch, a firmware that rewrote its
+   * timer). From then on, and as read for any time, the count is shifted by it.
+   */
+  jump(delta_us: number): void {
+    this.offset_us += delta_us;
+  }
 
   /** The device's unwrapped count at author time t (µs, float). */
   deviceTimeAt(t_us: number): number {
-    return this.config.offset_us + t_us * (1 + this.config.ppm * 1e-6);
+    return this.offset_us + t_us * (1 + this.config.ppm * 1e-6);
   }
 
   /** What micros() returns at author time t: the wrapped u32. */
@@ -36,6 +49,6 @@ export class DeviceClock {
    * (inverse of deviceTimeAt, up to float rounding).
    */
   authorTimeAt(deviceCount: number): number {
-    return (deviceCount - this.config.offset_us) / (1 + this.config.ppm * 1e-6);
+    return (deviceCount - this.offset_us) / (1 + this.config.ppm * 1e-6);
   }
 }

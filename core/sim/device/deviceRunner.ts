@@ -31,7 +31,7 @@ export class DeviceRunner {
 
   constructor(
     private readonly scheduler: Scheduler,
-    readonly devices: readonly WasmDevice[],
+    readonly devices: WasmDevice[],
     readonly chunk_us = 1000,
     /** Called with any error a device raises while the runner's own timer runs it (else it is thrown). */
     private readonly onError?: (error: unknown) => void,
@@ -65,6 +65,23 @@ export class DeviceRunner {
     this.guard(() => {
       this.runTo(now);
       device.receive(bytes, now);
+    });
+    this.arm();
+  }
+
+  /**
+   * Puts `next` in place of `old` from now on (a board that restarted: a fresh
+   * instance of its firmware), after everything due before now ran on the old one.
+   */
+  replace(old: WasmDevice, next: WasmDevice): void {
+    const i = this.devices.indexOf(old);
+    if (i < 0) throw new Error(`replace: ${old.name} is not run here`);
+    const now = this.scheduler.now();
+    this.guard(() => this.runTo(now));
+    this.devices[i] = next;
+    this.guard(() => {
+      next.start(now);
+      this.runTo(now);
     });
     this.arm();
   }
