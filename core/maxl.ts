@@ -275,8 +275,9 @@ export class Maxl {
   /**
    * Why the machine stopped off its plan (a link lost, a device restarted, a HALT,
    * a refused segment), until the job resumes or is dropped; null while all is well.
-   * While it is set, pause(), resume(), cancel() and whenIdle() refuse with
-   * RECOVERY_ORDER; moves added meanwhile wait at the end of the job.
+   * While it is set, whenIdle() rejects (with the refusal's error, else
+   * RECOVERY_ORDER), resume() refuses with RECOVERY_ORDER, pause() and cancel()
+   * resolve and change nothing; moves added meanwhile wait at the end of the job.
    */
   get stopped(): Readonly<StopRecord> | null {
     return this.runtime?.stopped ?? null;

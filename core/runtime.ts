@@ -334,6 +334,7 @@ export class Runtime {
 
   private clearStop(): void {
     this.stopRecord = null;
+    this.stopError = null;
     this.recovery = 'idle';
     this.halted = false;
     this.streamStopped = false;
@@ -392,13 +393,19 @@ export class Runtime {
     return this.streamer?.startLead_us ?? NaN;
   }
 
+  /**
+   * After a stop off the plan: rejects with the error that stopped the stream (a
+   * refusal, a failing evaluator), else RECOVERY_ORDER: the job will not reach its
+   * end until reconnect() and resumeJob().
+   */
   whenIdle(): Promise<void> {
-    if (this.stopRecord) return Promise.reject(this.stoppedError());
+    if (this.stopRecord) return Promise.reject(this.stopError ?? this.stoppedError());
     return this.requireStreamer().whenIdle();
   }
 
+  /** After a stop off the plan the machine already holds at rest: pause() and cancel() resolve and change nothing (the rest of the job waits for resumeJob() or discardJob()). */
   pause(): Promise<void> {
-    if (this.stopRecord) return Promise.reject(this.stoppedError());
+    if (this.stopRecord) return Promise.resolve();
     return this.requireStreamer().pause();
   }
 
@@ -408,7 +415,7 @@ export class Runtime {
   }
 
   cancel(): Promise<void> {
-    if (this.stopRecord) return Promise.reject(this.stoppedError());
+    if (this.stopRecord) return Promise.resolve();
     return this.requireStreamer().cancel();
   }
 
@@ -471,12 +478,17 @@ export class Runtime {
   private stopStream(device: string | null, error: MaxlError): void {
     if (this.streamStopped) return;
     this.streamStopped = true;
-    if (!this.stopRecord) this.stopRecord = { reason: 'refused', device: device ?? '', at_us: this.scheduler.now() };
+    if (!this.stopRecord) {
+      this.stopRecord = { reason: 'refused', device: device ?? '', at_us: this.scheduler.now() };
+      this.stopError = error;
+    }
     this.streamer?.stop(error);
     this.emit({ type: 'error', error });
     this.emit({ type: 'streamStopped', device });
   }
   private streamStopped = false;
+  /** The error that stopped the stream (a refusal, a failing evaluator), for whenIdle() until the job resumes. */
+  private stopError: MaxlError | null = null;
 
   private onStatus(session: DeviceSession, s: MessageOf<'STATUS'>, _at: number): void {
     const state = nameOf(DeviceState, s.state);

@@ -115,7 +115,8 @@ describe('recovery after HALT, and the order of the steps', () => {
     await b.scheduler.advance(300_000);
     expect(b.maxl.stopped?.reason).toBe('halted');
     const here = carriage(b);
-    await expectCode(b.maxl.pause(), 'RECOVERY_ORDER');
+    // The machine already holds at rest: pause() resolves and changes nothing; resume() needs reconnect() first.
+    await settle(b.scheduler, b.maxl.pause(), 1_000_000);
     await expectCode(() => b.maxl.resume(), 'RECOVERY_ORDER');
     const report = await settle(b.scheduler, b.maxl.reconnect(), 10_000_000);
     expect(report.stop.reason).toBe('halted');
