@@ -222,7 +222,7 @@ const RATE_PASSES = 3;
 function fitRate(a1: number[], d1: number[], a2: number[], d2: number[], first: number, a0: number, rate: number): number {
   const n = a1.length - first;
   const per = Math.max(RATE_SLICE, Math.ceil(n / 1000));
-  const residuals = new Float64Array(per);
+  const lowest = new Float64Array(Math.max(1, Math.round(per * RATE_EDGE_SHARE)));
   for (let pass = 0; pass < RATE_PASSES; pass++) {
     const up = new LineSums();
     const down = new LineSums();
@@ -232,13 +232,8 @@ function fitRate(a1: number[], d1: number[], a2: number[], d2: number[], first: 
       const end = Math.min(a1.length, i + per);
       const m = end - i;
       const keep = Math.max(1, Math.round(m * RATE_EDGE_SHARE));
-      const slice = residuals.subarray(0, m);
-      for (let j = i; j < end; j++) slice[j - i] = d1[j] - rate * (a1[j] - a0) - uRef;
-      slice.sort();
-      const uCut = slice[keep - 1];
-      for (let j = i; j < end; j++) slice[j - i] = d2[j] - rate * (a2[j] - a0) - wRef;
-      slice.sort();
-      const wCut = slice[m - keep];
+      const uCut = kthSmallest(lowest, keep, i, end, (j) => d1[j] - rate * (a1[j] - a0) - uRef);
+      const wCut = -kthSmallest(lowest, keep, i, end, (j) => -(d2[j] - rate * (a2[j] - a0) - wRef));
       for (let j = i; j < end; j++) {
         const u = d1[j] - rate * (a1[j] - a0) - uRef;
         if (u <= uCut) up.add(a1[j] - a0, u);
@@ -253,6 +248,25 @@ function fitRate(a1: number[], d1: number[], a2: number[], d2: number[], first: 
     rate += (wUp * up.sty() + wDown * down.sty()) / stt;
   }
   return rate;
+}
+
+/**
+ * The k-th smallest of value(j) for j in [from, to), k ≤ buffer.length: the k smallest
+ * so far are kept sorted in `buffer` (insertion, O((to − from)·k); k is a few here).
+ */
+function kthSmallest(buffer: Float64Array, k: number, from: number, to: number, value: (j: number) => number): number {
+  let held = 0;
+  for (let j = from; j < to; j++) {
+    const x = value(j);
+    if (held === k && x >= buffer[k - 1]) continue;
+    let at = held < k ? held++ : k - 1;
+    while (at > 0 && buffer[at - 1] > x) {
+      buffer[at] = buffer[at - 1];
+      at--;
+    }
+    buffer[at] = x;
+  }
+  return buffer[held - 1];
 }
 
 /** Running sums for a least-squares line y = c + s·t. */
