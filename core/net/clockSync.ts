@@ -49,9 +49,8 @@
  * Until the window spans half a second the rate is held (1 at first) and only the
  * offset is fitted.
  *
- * The exchanges themselves: the session pings every 1 ms while begin() syncs (no
- * job runs yet), every 2 ms for the session's first two minutes, then every 25 ms
- * (session.ts, pingPeriod_us), within a share of the link's bandwidth.
+ * The exchanges themselves: the session pings every 4 ms for its first two minutes,
+ * then every 25 ms (session.ts).
  *
  * A one-shot offset set at start-up (the paper's method) drifts by up to 0.72 s
  * an hour with ±200 ppm crystals; this model follows the drift.

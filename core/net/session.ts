@@ -52,14 +52,10 @@ export interface SessionOptions {
   silence_us: number;
   /** ping period (µs) during a session */
   pingEvery_us: number;
-  /** ping period (µs) during a burst (pingBurst: begin() syncs this way before any job), to fit a clock model quickly */
+  /** ping period (µs) during a burst (pingBurst), to fit a clock model quickly */
   burstPingEvery_us: number;
-  /** ping period (µs) while the session is young (youngFor_us), as the model settles */
-  youngPingEvery_us: number;
-  /** a session pings at youngPingEvery_us for this long after it opens (µs) */
+  /** a session pings at the burst period for this long after it opens (µs) */
   youngFor_us: number;
-  /** pings (with their pongs and acks) take at most this share of the link's bandwidth, when the link says it */
-  pingShareMax: number;
   /** unacknowledged frames in flight at most */
   window: number;
 }
@@ -69,10 +65,8 @@ export const DEFAULT_SESSION: SessionOptions = {
   resendAfter_us: 4_000,
   silence_us: 300_000,
   pingEvery_us: 25_000,
-  burstPingEvery_us: 1_000,
-  youngPingEvery_us: 2_000,
+  burstPingEvery_us: 4_000,
   youngFor_us: 120_000_000,
-  pingShareMax: 0.2,
   window: 8,
 };
 
@@ -97,10 +91,6 @@ interface Outgoing {
   firstSentAt: number;
   resolve(result: SendResult): void;
 }
-
-/** Bytes an exchange puts on the busier direction, device → author: its PONG and the PING's ACK. */
-const PING_EXCHANGE_BYTES =
-  encodeFrame(0, { type: 'PONG', pingId: 0, rxTime: 0, txTime: 0 }).length + encodeFrame(0, { type: 'ACK', ackSeq: 0, freeSegments: 0, freeEvents: 0 }).length;
 
 export class DeviceSession {
   readonly link: Link;
@@ -219,7 +209,7 @@ export class DeviceSession {
     return Math.max(this.options.resendAfter_us, 2 * (this.clock.rttHigh || 0));
   }
 
-  /** Pings at burstPingEvery_us for `duration_us`, so the clock model converges quickly (begin() does this). */
+  /** Pings five times as often for `duration_us`, so the clock model converges quickly (begin() does this). */
   pingBurst(duration_us: number): void {
     this.burstUntil = this.scheduler.now() + duration_us;
   }
@@ -459,37 +449,20 @@ export class DeviceSession {
     const tick = () => {
       if (this.state !== 'open') return;
       // Pings do not queue behind a backlog: a late ping would only add noise.
-      const every = this.pingPeriod_us();
       if (this.backlog < this.options.window) {
         const pingId = this.nextPingId;
         this.nextPingId = (this.nextPingId % 0xffff) + 1;
-        // The reply waits 0–2 ms (see PING in docs/protocol.md §4), and less than the
-        // next ping's earliest arrival: a device holds one pong, and a newer ping sends
-        // the older pong at once, undithered.
-        void this.send({ type: 'PING', pingId, replyAfter: Math.floor(random() * Math.min(2000, 0.75 * every)) });
+        // The reply waits 0–2 ms: see PING in docs/protocol.md §4.
+        void this.send({ type: 'PING', pingId, replyAfter: Math.floor(random() * 2000) });
       }
+      // Fast while the model is young (it converges with the number of exchanges),
+      // then at the session's pace: burstPingEvery_us while the session is young (youngFor_us, two minutes by default), then pingEvery_us.
+      const age = this.scheduler.now() - this.openedAt;
+      const young = age < this.options.youngFor_us || this.scheduler.now() < this.burstUntil ? this.options.burstPingEvery_us : Infinity;
+      const every = Math.min(young, this.options.pingEvery_us);
       this.timers.ping = this.scheduler.after(every * (0.75 + 0.5 * random()), tick);
     };
     tick();
-  }
-
-  /**
-   * The ping period now. Fast while the model is young (it converges with the number
-   * of exchanges): burstPingEvery_us during a burst (begin()'s sync, before any job),
-   * youngPingEvery_us for youngFor_us after the session opens, then pingEvery_us.
-   * Never so fast that an exchange's bytes (the larger direction: PONG and ACK) take
-   * more than pingShareMax of the link's bandwidth (an Uno's 250 000 baud: ~6 ms).
-   */
-  private pingPeriod_us(): number {
-    const now = this.scheduler.now();
-    const wanted = Math.min(
-      this.options.pingEvery_us,
-      now < this.burstUntil ? this.options.burstPingEvery_us : Infinity,
-      now - this.openedAt < this.options.youngFor_us ? this.options.youngPingEvery_us : Infinity,
-    );
-    const bytesPerSecond = this.link.bytesPerSecond;
-    if (!(bytesPerSecond && bytesPerSecond > 0)) return wanted;
-    return Math.max(wanted, (1e6 * PING_EXCHANGE_BYTES) / (bytesPerSecond * this.options.pingShareMax));
   }
 
   /** Checks now and then that the device still talks (any frame will do: acks, pongs, status). */
