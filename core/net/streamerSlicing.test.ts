@@ -97,8 +97,8 @@ describe('streamer slicing of a long move (hold-to-jog)', () => {
       const x = 10 + 0.4 * k;
       void maxl.addSegmentToQueue({ endPosition: [x, 10], maxVelocity: 100 });
       appended.push({ x, t_us: scheduler.now() });
-      for (let t = 0; t < 8; t++) {
-        await scheduler.advance(1000);
+      for (let t = 0; t < 32; t++) {
+        await scheduler.advance(250);
         const at = maxl.estimate().position[0];
         for (const p of appended) if (!reached.has(p.x) && at >= p.x - 1e-9) reached.set(p.x, scheduler.now());
       }
@@ -106,7 +106,9 @@ describe('streamer slicing of a long move (hold-to-jog)', () => {
     // Once under way (after the first 30 points), the tool reaches each point at most
     // v/(2a) (braking) + the lead + one point's interval (8 ms) after it was appended,
     // plus 5 ms: the refill (the timed path is topped up 2 ms past the horizon), the
-    // streamer's 1 ms tick, the 1 ms steps here, and 1 ms to spare. Locked whole, each
+    // streamer's 1 ms tick, the 0.25 ms steps here (1 ms steps quantised the worst case
+    // to a whole ms, which a 0.4 ms shorter lead from a better clock fit then crossed),
+    // and 1.75 ms to spare. Locked whole, each
     // segment's braking for the queue's end is fixed a segment early: 35 ms here
     // against a floor of 28 (sliced: 32).
     const floor_us = (v / (2 * a)) * 1e6 + maxl.lead_us + 8_000;
