@@ -11,7 +11,10 @@
  *   fast    a circle (r 18) at 150 mm/s, above the machine's 120 mm/s
  * The pointer moves as a hand does: it presses at the stroke's first point and
  * waits there until the machine has travelled to it and the pen has landed (the
- * tool at rest on the point, then the pen-down delay and 100 ms), speeds up to the
+ * simulated pen's first ink of the stroke reaches the page), and 100 ms more. (It
+ * waited for the tool at rest on the point and the pen-down delay before, which
+ * the first stroke passed too early: the tool may rest on the point before its
+ * pen-up dwell, so the pointer moved ~0.5 s before the pen touched.) It speeds up to the
  * stroke's speed and slows to rest at its end at POINTER_ACCEL (below the
  * machine's acceleration, so the ends do not ask more than the middle), and lifts.
  * A move goes out every SAMPLE_MS of wall time (as the page's timers allow), at the
@@ -150,16 +153,19 @@ async function bedMapping(page: Page): Promise<(p: [number, number]) => [number,
 const POINTER_SCRIPT = `
 window.__drawPointer = (a) => new Promise((resolve) => {
   const canvas = document.querySelector('[data-testid=plotter-bed]');
-  const status = document.querySelector('[data-testid=plotter-status]');
   const r = canvas.getBoundingClientRect();
   const fire = (type, i) => canvas.dispatchEvent(new PointerEvent(type, { pointerId: 17, pointerType: 'pen', isPrimary: true, bubbles: true, cancelable: true, button: 0, buttons: type === 'pointerup' ? 0 : 1, clientX: r.left + a.px[2 * i], clientY: r.top + a.px[2 * i + 1] }));
   const n = a.px.length / 2 - 1;
   const ta = a.speed / a.accel, da = 0.5 * a.accel * ta * ta, cruise = (a.length - 2 * da) / a.speed;
   const along = (t) => t <= ta ? 0.5 * a.accel * t * t : t <= ta + cruise ? da + a.speed * (t - ta) : t - ta - cruise >= ta ? a.length : a.length - 0.5 * a.accel * (2 * ta + cruise - t) ** 2;
+  // The pen has landed when its first ink of this stroke reaches the page (the
+  // simulated pen lays ink only once it touches: the travel, the pen-up and pen-down
+  // dwells come first); a hand waits for that, and 100 ms more.
+  const plotter = window.maxlWorkbench.plotter;
+  const inkBefore = plotter.ink.length;
   fire('pointerdown', 0);
   const waitForPen = () => {
-    const x = Number(status.dataset.toolX), y = Number(status.dataset.toolY), v = Number(status.dataset.speed);
-    if (v === 0 && Math.hypot(x - a.first[0], y - a.first[1]) < 0.05) setTimeout(draw, a.penDelay + 100);
+    if (plotter.ink.length > inkBefore) setTimeout(draw, 100);
     else setTimeout(waitForPen, 10);
   };
   const draw = () => {
@@ -194,7 +200,7 @@ interface Drawn {
   seconds: number;
 }
 
-async function drawStroke(page: Page, toCanvasPx: (p: [number, number]) => [number, number], spec: StrokeSpec, penDelay: number): Promise<Drawn> {
+async function drawStroke(page: Page, toCanvasPx: (p: [number, number]) => [number, number], spec: StrokeSpec): Promise<Drawn> {
   const { length, at } = byLength(spec.path);
   const px: number[] = [];
   for (let k = 0; k * STEP_MM <= length + 1e-9; k++) px.push(...toCanvasPx(at(k * STEP_MM)));
@@ -206,8 +212,6 @@ async function drawStroke(page: Page, toCanvasPx: (p: [number, number]) => [numb
     speed: spec.speed,
     accel: POINTER_ACCEL,
     sample: SAMPLE_MS,
-    first: at(0),
-    penDelay,
   });
   await page.waitForFunction(() => document.querySelector('[data-testid=plotter-status]')?.getAttribute('data-active') === 'false', null, { timeout: 60_000 });
   return r;
@@ -225,14 +229,13 @@ await page.waitForFunction(() => [...document.querySelectorAll('[data-testid=log
 await page.waitForFunction(() => document.querySelector('[data-testid=phase]')?.textContent === 'ready', null, { timeout: 60_000 });
 await page.getByTestId('tab-plotter').click();
 await page.getByTestId('plotter-clear').click();
-const penDelay_ms = Number(await page.getByTestId('plotter-delay-down').inputValue());
 const toPx = await bedMapping(page);
 await page.addScriptTag({ content: POINTER_SCRIPT });
 console.error('[draw] the simulated Blot is ready; drawing');
 
 let worstGapMs = 0;
 for (const spec of STROKES) {
-  const r = await drawStroke(page, toPx, spec, penDelay_ms);
+  const r = await drawStroke(page, toPx, spec);
   worstGapMs = Math.max(worstGapMs, r.worstGap);
   console.error(`[draw] ${spec.name} drawn: ${r.moves} pointer moves in ${r.seconds.toFixed(2)} s, the longest gap ${r.worstGap.toFixed(1)} ms`);
 }
