@@ -12,3 +12,18 @@ export function distanceToPolyline(p: readonly number[], points: readonly (reado
   }
   return best;
 }
+
+/**
+ * The Blot-sized test path the stop and recovery tests share: long straights and
+ * corners, fast enough that braking takes a while (mm).
+ */
+export function corneredPath(): number[][] {
+  return [
+    [10, 10],
+    [90, 10],
+    [90, 60],
+    [30, 70],
+    [30, 20],
+    [80, 40],
+  ];
+}

@@ -5,18 +5,10 @@
 import { afterAll, describe, expect, it } from 'vitest';
 import { blotPlotter, lightPainter } from '../sim/presets/index.ts';
 import { seededRandom } from '../random.ts';
-import { distanceToPolyline } from './geometry.ts';
+import { corneredPath, distanceToPolyline } from './geometry.ts';
 import { startMachine, type Bench } from './harness.ts';
 
-/** A path with long straights and corners, fast enough that braking takes a while. */
-const PATH = [
-  [10, 10],
-  [90, 10],
-  [90, 60],
-  [30, 70],
-  [30, 20],
-  [80, 40],
-];
+const PATH = corneredPath();
 
 async function cutMidJob(b: Bench, cutAfter_us: number, which: string[]) {
   const start = b.maxl.queue.tailPosition as number[];

@@ -7,17 +7,10 @@
 import { describe, expect, it } from 'vitest';
 import { blotPlotter } from '../sim/presets/index.ts';
 import { MaxlError, createMAXL } from '../index.ts';
-import { distanceToPolyline } from './geometry.ts';
+import { corneredPath, distanceToPolyline } from './geometry.ts';
 import { settle, startMachine, type Bench } from './harness.ts';
 
-const PATH = [
-  [10, 10],
-  [90, 10],
-  [90, 60],
-  [30, 70],
-  [30, 20],
-  [80, 40],
-];
+const PATH = corneredPath();
 
 /** The carriage, from the plant's motors (after sync). */
 function carriage(b: Bench): number[] {

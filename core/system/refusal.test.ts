@@ -12,18 +12,11 @@ import { MaxlError } from '../errors.ts';
 import type { Message } from '../net/messages.ts';
 import { blotPlotter } from '../sim/presets/index.ts';
 import { tamperLink } from '../sim/testing/tamperLink.ts';
-import { distanceToPolyline } from './geometry.ts';
+import { corneredPath, distanceToPolyline } from './geometry.ts';
 import { settle, startMachine } from './harness.ts';
 
-const PATH = [
-  [10, 10],
-  [90, 10],
-  [90, 60],
-  [30, 70],
-  [30, 20],
-  [80, 40],
-  [10, 10],
-];
+/** The shared path, closed back to its start. */
+const PATH = [...corneredPath(), [10, 10]];
 
 /** Which TIMING frame the link spoils: one well into the job. */
 const REFUSED = 40;
