@@ -32,23 +32,14 @@ import { spawn, spawnSync } from 'node:child_process';
 import { createWriteStream, mkdirSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { positiveIntArg } from './args.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const out = path.join(root, 'firmware', 'build', 'fuzz');
-const argValue = (name, fallback) => {
-  const i = process.argv.indexOf(name);
-  if (i < 0) return fallback;
-  const v = Number(process.argv[i + 1]);
-  if (!Number.isInteger(v) || v < 1) {
-    console.error(`${name} needs a positive integer, got "${process.argv[i + 1]}"`);
-    process.exit(2);
-  }
-  return v;
-};
-const totalRuns = argValue('--runs', 10_000_000);
-const jobs = argValue('--jobs', 2);
-const baseSeed = argValue('--seed', 1 + (Date.now() % 1_000_000));
-const maxSeconds = argValue('--max-seconds', 0);
+const totalRuns = positiveIntArg('--runs', 10_000_000);
+const jobs = positiveIntArg('--jobs', 2);
+const baseSeed = positiveIntArg('--seed', 1 + (Date.now() % 1_000_000));
+const maxSeconds = positiveIntArg('--max-seconds', 0);
 const deadline = maxSeconds > 0 ? Date.now() + maxSeconds * 1000 : Infinity;
 let interrupted = false;
 const live = new Set();

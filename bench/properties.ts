@@ -31,21 +31,12 @@ import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import type { PropertyLogLine } from '../core/testing/propertyLog.ts';
+import { positiveIntArg } from './args.mjs';
 
 const MINIMUM_CASES = 100_000;
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
-function argValue(name: string, fallback: number): number {
-  const i = process.argv.indexOf(name);
-  if (i < 0) return fallback;
-  const v = Number(process.argv[i + 1]);
-  if (!Number.isInteger(v) || v < 1) {
-    console.error(`${name} needs a positive integer, got "${process.argv[i + 1]}"`);
-    process.exit(2);
-  }
-  return v;
-}
-const runsPerProperty = argValue('--runs', 6000);
-const seed = argValue('--seed', 20261122);
+const runsPerProperty = positiveIntArg('--runs', 6000);
+const seed = positiveIntArg('--seed', 20261122);
 const log = (...a: unknown[]) => console.error('[bench properties]', ...a);
 
 /** Every *.test.ts under core/ and app/ that holds a property. */
