@@ -22,6 +22,10 @@
  * Top level: segmentsPerSecond and coldSegmentsPerSecond are the worst path's
  * incremental rates; worstDurationRatio the largest durationRatio;
  * worstPlanPathSpeedup the smallest planPath rate / incremental rate.
+ *
+ * Options: `--path NAME[,NAME…]` plans only the paths named (spiral, raster,
+ * randomWalk, fineCircle), for profiling one path or comparing two trees quickly;
+ * BENCH_RUNS (default 5) sets the timed runs per path.
  */
 import os from 'node:os';
 import { createMAXL, planPath } from '../core/index.ts';
@@ -31,6 +35,20 @@ import { benchPaths, fineCircle, BENCH_LIMITS, type BenchPath } from './paths.ts
 
 const RUNS = Number(process.env.BENCH_RUNS ?? 5);
 const WARMUP = 2;
+
+/** The paths to plan: all four, or those named by `--path a,b`. */
+function selectedPaths(): BenchPath[] {
+  const all = [...benchPaths(), fineCircle()];
+  const at = process.argv.indexOf('--path');
+  if (at < 0) return all;
+  const names = (process.argv[at + 1] ?? '').split(',').filter((n) => n !== '');
+  const unknown = names.filter((n) => !all.some((p) => p.name === n));
+  if (names.length === 0 || unknown.length > 0) {
+    console.error(`--path: unknown path ${unknown.join(', ') || '(none given)'}; the paths are ${all.map((p) => p.name).join(', ')}`);
+    process.exit(2);
+  }
+  return all.filter((p) => names.includes(p.name));
+}
 
 interface Run {
   seconds: number;
@@ -83,7 +101,7 @@ let worst = Infinity;
 let worstCold = Infinity;
 let worstDurationRatio = 0;
 let worstPlanPathSpeedup = Infinity;
-for (const path of [...benchPaths(), fineCircle()]) {
+for (const path of selectedPaths()) {
   // Incremental and batch runs are kept apart, so one's garbage does not land in the other's timing.
   const maxl = machineFor(path);
   const incCold = await incremental(maxl, path);

@@ -84,7 +84,7 @@ export class Maxl {
     const history = new TrajectoryHistory(c.motionAxes.length, c.actuatorAxes.length, c.eventChannels.length, options.historyLimit ?? 100_000);
     this.record = history;
     this.history = readOnlyHistory(history);
-    this.trajectory = new TrajectoryQueue(this.config, start, (seg) => history.push(seg));
+    this.trajectory = new TrajectoryQueue(this.config, start, history);
     this.queue = readOnlyQueue(this.trajectory);
     queues.set(this, this.trajectory);
     this.scheduler = options.scheduler ?? new RealScheduler();

@@ -42,13 +42,27 @@ export class DryRun {
 
   /** Takes segments until the producer has room again (what a producer loop calls after each add). */
   takeWhileFull(): void {
-    while (!this.queue.hasRoom() && this.takeFront() !== undefined);
+    while (!this.queue.hasRoom() && this.take());
   }
 
   /** The path is complete: plans it to rest and takes every queued segment. */
   finish(): void {
     this.queue.planToRest();
-    while (this.takeFront() !== undefined);
+    while (this.take());
     this.queue.retireUntil(this.queue.transmittedEnd_us);
+  }
+
+  /**
+   * Takes the front segment; false if none is queued. Without `onSegment` nobody
+   * needs it as an object, so the queue may lock and record it from its columns
+   * (TrajectoryQueue.executeFrontNow).
+   */
+  private take(): boolean {
+    if (this.onSegment) return this.takeFront() !== undefined;
+    const duration_s = this.queue.executeFrontNow(0);
+    if (duration_s < 0) return false;
+    this.segments++;
+    this.duration_s += duration_s;
+    return true;
   }
 }

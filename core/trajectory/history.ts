@@ -20,6 +20,16 @@ import { sampleTimeline, segmentIndexAt, type TimedSegment, type TrajectorySampl
 export const MAX_PHASES = 3;
 const HEADER = 4;
 
+/** The scalar fields and actuators of a record, as a transmitted segment has them. */
+export interface HistoryRecordFields {
+  startTime_us: number;
+  duration_s: number;
+  length: number;
+  actuatorStart: readonly number[];
+  actuatorRate: readonly number[];
+  eventsAtStart: readonly number[] | null;
+}
+
 export interface HistoricalSegment extends TimedSegment {
   startTime_us: number;
   duration_s: number;
@@ -34,8 +44,8 @@ export interface HistoricalSegment extends TimedSegment {
  * jerk) per step: a million segments a second go through here, and a loop per
  * number costs twice as much.
  */
-function copyPhases(d: Float64Array, o: number, timing: Timing): void {
-  for (let k = 0; k < timing.length; k += PHASE_STRIDE) {
+function copyPhases(d: Float64Array, o: number, timing: ArrayLike<number>, length: number): void {
+  for (let k = 0; k < length; k += PHASE_STRIDE) {
     d[o + k] = timing[k];
     d[o + k + 1] = timing[k + 1];
     d[o + k + 2] = timing[k + 2];
@@ -46,7 +56,7 @@ function copyPhases(d: Float64Array, o: number, timing: Timing): void {
 }
 
 /** Writes a[0 … n) then b[0 … n) (a point and its rate along s) to d from offset o; returns the offset after them. */
-function copyPair(d: Float64Array, o: number, a: readonly number[], b: readonly number[], n: number): number {
+function copyPair(d: Float64Array, o: number, a: ArrayLike<number>, b: ArrayLike<number>, n: number): number {
   for (let i = 0; i < n; i++) {
     d[o + i] = a[i];
     d[o + n + i] = b[i];
@@ -98,7 +108,24 @@ export class TrajectoryHistory {
   /** Copies a transmitted segment in; the oldest record goes when the ring is full. */
   push(seg: Segment): void {
     const timing = seg.timing;
-    if (timing === null || timing.length > MAX_PHASES * PHASE_STRIDE) throw new Error(`history: segment ${seg.id} has no timing or too many phases`);
+    if (timing === null) throw new Error(`history: segment ${seg.id} has no timing`);
+    this.pushRecord(seg, timing, timing.length, seg.start, seg.unit, seg.eventTracks);
+  }
+
+  /**
+   * Copies a transmitted segment in from its parts, for a segment never made into
+   * an object (the queue's columnar tail, locked by a dry run): `timing` holds
+   * `timingLength` packed numbers; `seg` gives the scalar fields and actuators.
+   */
+  pushRecord(
+    seg: HistoryRecordFields,
+    timing: ArrayLike<number>,
+    timingLength: number,
+    start: ArrayLike<number>,
+    unit: ArrayLike<number>,
+    eventTracks: readonly EventTrack[] | null,
+  ): void {
+    if (timingLength > MAX_PHASES * PHASE_STRIDE) throw new Error(`history: a segment of ${timingLength / PHASE_STRIDE} phases (at most ${MAX_PHASES})`);
     const n = this.count++;
     if (n < this.capacity) this.makeRoomFor(n);
     else if (this.events.size > 0) this.events.delete(n - this.capacity); // its slot is reused now
@@ -108,14 +135,14 @@ export class TrajectoryHistory {
     d[o] = seg.startTime_us;
     d[o + 1] = seg.duration_s;
     d[o + 2] = seg.length;
-    d[o + 3] = timing.length;
-    copyPhases(d, o + HEADER, timing);
+    d[o + 3] = timingLength;
+    copyPhases(d, o + HEADER, timing, timingLength);
     let v = o + HEADER + MAX_PHASES * PHASE_STRIDE;
-    v = copyPair(d, v, seg.start, seg.unit, this.axes);
+    v = copyPair(d, v, start, unit, this.axes);
     v = copyPair(d, v, seg.actuatorStart, seg.actuatorRate, this.actuators);
     const atStart = seg.eventsAtStart;
     for (let c = 0; c < this.channels; c++) d[v + c] = atStart ? atStart[c] : 0;
-    if (seg.eventTracks && seg.eventTracks.length > 0) this.events.set(n, seg.eventTracks);
+    if (eventTracks && eventTracks.length > 0) this.events.set(n, eventTracks);
   }
 
   /** Grows the ring (doubling, up to capacity) so that it has a slot for record n < capacity. */

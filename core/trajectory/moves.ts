@@ -227,7 +227,21 @@ export function distance(a: readonly number[], b: readonly number[]): number {
   return Math.sqrt(d2);
 }
 
-function hasNonlinearTransform(config: ResolvedConfig): boolean {
+/** d(actuator)/ds along a straight piece from actuators a0 to a1 over `length` mm. */
+export function actuatorRate(a0: readonly number[], a1: readonly number[], length: number): number[] {
+  const rate = new Array<number>(a0.length);
+  for (let j = 0; j < a0.length; j++) rate[j] = (a1[j] - a0[j]) / length;
+  return rate;
+}
+
+/** Writes the unit direction from p0 to p1 into `unit` and returns the distance (mm); `unit` is not meaningful below ZERO_LENGTH_MM. */
+export function directionInto(p0: readonly number[], p1: readonly number[], unit: number[]): number {
+  const total = distance(p0, p1);
+  for (let i = 0; i < p0.length; i++) unit[i] = (p1[i] - p0[i]) / total;
+  return total;
+}
+
+export function hasNonlinearTransform(config: ResolvedConfig): boolean {
   for (const t of config.transforms) if (!t.linear) return true;
   return false;
 }
@@ -302,10 +316,9 @@ export function segmentsForMove(
 ): Segment[] {
   const p0 = tail.position;
   if (move.dwell_s !== null) return [dwellSegment(config, move, p0, move.dwell_s, firstId, moveId)];
-  const total = distance(p0, move.end);
-  if (total < ZERO_LENGTH_MM) return move.events.length > 0 ? [dwellSegment(config, move, p0, 0, firstId, moveId)] : [];
   const unit = new Array<number>(p0.length);
-  for (let i = 0; i < p0.length; i++) unit[i] = (move.end[i] - p0[i]) / total;
+  const total = directionInto(p0, move.end, unit);
+  if (total < ZERO_LENGTH_MM) return move.events.length > 0 ? [dwellSegment(config, move, p0, 0, firstId, moveId)] : [];
   const limits = config.limits;
   const moveCruise2 = lineCruise2(limits, move, unit);
   const accel = lineAccel(limits, move, unit);
@@ -326,11 +339,7 @@ export function segmentsForMove(
     const a1 = last && move.actuatorEnd !== null ? move.actuatorEnd : actuatorPosition(config.transforms, end);
     // Within one move all pieces share the direction; only the first meets a corner.
     const maxEntry2 = entryCap2(limits, prevUnit, prevCruise2, unit, cruise2, k === 0);
-    let rate = a0; // (empty when there are no transforms)
-    if (a0.length > 0) {
-      rate = new Array<number>(a0.length);
-      for (let j = 0; j < a0.length; j++) rate[j] = (a1[j] - a0[j]) / length;
-    }
+    const rate = a0.length > 0 ? actuatorRate(a0, a1, length) : a0; // (empty when there are no transforms)
     const seg = new Segment(firstId + k, moveId, start, end, unit, length, fractions[k] * total, move);
     seg.actuatorStart = a0;
     seg.actuatorRate = rate;

@@ -20,7 +20,26 @@ import type { ResolvedConfig } from '../config/types.ts';
 import { LookaheadPlanner } from '../plan/lookahead.ts';
 import { shouldDropSpent } from '../plan/spentPrefix.ts';
 import { buildEventTracks, type EventTrack } from './events.ts';
-import { segmentsForMove, tailAfter, validateMove, ZERO_LENGTH_MM, type Move, type PathTail, type ValidatedMove } from './moves.ts';
+import { actuatorPosition } from '../config/transforms.ts';
+import {
+  actuatorRate,
+  directionInto,
+  entryCap2,
+  floorCruise2,
+  hasNonlinearTransform,
+  lineAccel,
+  lineCruise2,
+  segmentsForMove,
+  tailAfter,
+  validateMove,
+  ZERO_LENGTH_MM,
+  type Move,
+  type PathTail,
+  type ValidatedMove,
+} from './moves.ts';
+import { PendingSegments, type PendingFront, type PendingLine } from './pendingSegments.ts';
+import type { HistoryRecordFields, TrajectoryHistory } from './history.ts';
+import { PHASE_STRIDE, TRAPEZOID_MAX_PHASES, writeTrapezoid } from '../plan/phases.ts';
 import type { QueueEventType, QueueView } from './queueView.ts';
 import { Segment, type SegmentState } from './segment.ts';
 import { copySegment, pointPosition, rejoinSegment, remainderOf, type PathPoint } from './restart.ts';
@@ -67,12 +86,24 @@ export class TrajectoryQueue implements QueueView {
   private minSegmentDuration_s = 0;
 
   /**
-   * Live segments (transmitted, then untransmitted) in path order from live[head].
-   * The last `untransmitted` of them are the planner's blocks.
+   * Live segments as objects (transmitted, then untransmitted) in path order from
+   * live[head]; the last `untransmitted` of them are untransmitted. The rest of the
+   * untransmitted path follows them in `pending`, as columns (pendingSegments.ts):
+   * the planner's blocks are live's untransmitted ones, then pending's. Every method
+   * that reads or edits the untransmitted path as objects first moves pending into
+   * live (materialize); only appending a single-segment line with nobody listening,
+   * planning and transmitting the front work on the columns.
    */
   private live: Segment[] = [];
   private head = 0;
   private untransmitted = 0;
+  private readonly pending: PendingSegments;
+  /** Whether single-segment lines may go to `pending`: no nonlinear transform subdivides moves. */
+  private readonly columnar: boolean;
+  /** Two unit-vector buffers for columnar appends: the tail's direction is one, the new segment's the other. */
+  private readonly unitBuffers: [number[], number[]];
+  /** The columnar append's inputs, reused. */
+  private readonly line: PendingLine;
   private readonly planner: LookaheadPlanner;
   /** Segments finalised during the current call, reported once it returns. */
   private newlyPlanned: Segment[] = [];
@@ -90,17 +121,28 @@ export class TrajectoryQueue implements QueueView {
   private roomWaiters: Array<() => void> = [];
   private reserved = 0;
 
-  /** Called for each segment as it is locked, before listeners hear of it (the author's history). */
-  private readonly onTransmitted: ((seg: Segment) => void) | undefined;
+  /** The author's as-planned history: each segment is recorded as it is locked, before listeners hear of it. */
+  private readonly history: TrajectoryHistory | undefined;
+  /** executeFrontNow()'s reused buffers: the front's fields, its packed timing, its history record. */
+  private readonly front: PendingFront;
+  private readonly timingBuffer = new Float64Array(TRAPEZOID_MAX_PHASES * PHASE_STRIDE);
+  private readonly record: HistoryRecordFields = { startTime_us: 0, duration_s: 0, length: 0, actuatorStart: [], actuatorRate: [], eventsAtStart: null };
 
-  constructor(config: ResolvedConfig, initialPosition?: number[], onTransmitted?: (seg: Segment) => void) {
+  constructor(config: ResolvedConfig, initialPosition?: number[], history?: TrajectoryHistory) {
     this.config = config;
-    this.onTransmitted = onTransmitted;
+    this.history = history;
     this.capacity = config.queueCapacity;
     const position = initialPosition ? [...initialPosition] : new Array<number>(config.motionAxes.length).fill(0);
     this.tail = { position, unit: null, cruise2: 0 };
     this.lockedEventValues = new Array<number>(config.eventChannels.length).fill(0);
     this.planner = new LookaheadPlanner(this.capacity, (offset, entry2, exit2) => this.onPlanned(offset, entry2, exit2));
+    const axes = config.motionAxes.length;
+    this.pending = new PendingSegments(axes);
+    this.columnar = !hasNonlinearTransform(config);
+    this.unitBuffers = [new Array<number>(axes).fill(0), new Array<number>(axes).fill(0)];
+    const zeros = () => new Array<number>(axes).fill(0);
+    this.front = { start: zeros(), unit: zeros(), events: [], actuatorStart: [], actuatorEnd: null, length: 0, accel: 0, cruise2: 0, planned: false, entry2: 0 };
+    this.line = { id: 0, moveId: 0, source: null as unknown as ValidatedMove, start: position, unit: this.unitBuffers[0], length: 0, accel: 0, cruise2: 0, maxEntry2: 0, actuatorStart: [] };
   }
 
   /**
@@ -117,15 +159,16 @@ export class TrajectoryQueue implements QueueView {
 
   /** Live segments in path order (a copy). */
   segments(): Segment[] {
+    this.materialize();
     return this.live.slice(this.head);
   }
 
   get size(): number {
-    return this.live.length - this.head;
+    return this.live.length - this.head + this.pending.size;
   }
 
   get untransmittedCount(): number {
-    return this.untransmitted;
+    return this.untransmitted + this.pending.size;
   }
 
   /**
@@ -140,8 +183,9 @@ export class TrajectoryQueue implements QueueView {
    * MAX_LOOKAHEAD_SEGMENTS bounds the memory on absurdly fine paths.
    */
   hasRoom(): boolean {
-    if (this.untransmitted + this.reserved < this.capacity) return true;
-    return this.reserved === 0 && this.planner.needsMorePath && this.untransmitted < MAX_LOOKAHEAD_SEGMENTS;
+    const untransmitted = this.untransmitted + this.pending.size;
+    if (untransmitted + this.reserved < this.capacity) return true;
+    return this.reserved === 0 && this.planner.needsMorePath && untransmitted < MAX_LOOKAHEAD_SEGMENTS;
   }
 
   /** The end of the path as appended so far (mm, motion axes). */
@@ -161,17 +205,20 @@ export class TrajectoryQueue implements QueueView {
 
   /** A live segment by id (ids are unique, but pieces of a split segment are numbered after it). */
   get(id: number): Segment | undefined {
+    this.materialize();
     for (let i = this.live.length - 1; i >= this.head; i--) if (this.live[i].id === id) return this.live[i];
     return undefined;
   }
 
   /** The i-th untransmitted segment (0 = the next to transmit), if any. */
   untransmittedAt(i: number): Segment | undefined {
+    this.materialize();
     return i >= 0 && i < this.untransmitted ? this.live[this.live.length - this.untransmitted + i] : undefined;
   }
 
   /** The first segment not yet transmitted, if any. */
   peekUntransmitted(): Segment | undefined {
+    this.materialize();
     return this.untransmitted > 0 ? this.live[this.live.length - this.untransmitted] : undefined;
   }
 
@@ -180,6 +227,7 @@ export class TrajectoryQueue implements QueueView {
    * at rest now), for display. Final plans are untouched.
    */
   provisionalPlan(): void {
+    this.materialize();
     const first = this.live.length - this.untransmitted;
     this.planner.fillProvisional((offset, entry2, exit2) => {
       const seg = this.live[first + offset];
@@ -205,6 +253,8 @@ export class TrajectoryQueue implements QueueView {
   }
 
   subscribe(listener: QueueListener): () => void {
+    // A listener hears of segments as objects: the columnar tail becomes objects now, and stays so while anyone listens.
+    this.materialize();
     this.listeners = [...this.listeners, listener];
     return () => {
       this.listeners = this.listeners.filter((l) => l !== listener);
@@ -273,6 +323,11 @@ export class TrajectoryQueue implements QueueView {
 
   /** Turns a move into segments at the tail and plans them; `added` collects them for an edit's report. */
   private enqueue(move: ValidatedMove, moveId: number, added: Segment[] | null): MoveReceipt {
+    if (added === null && this.columnar && move.dwell_s === null && this.listeners.length === 0) {
+      const receipt = this.enqueueLine(move, moveId);
+      if (receipt !== null) return receipt;
+    }
+    this.materialize();
     const segments = segmentsForMove(this.config, move, this.tail, this.nextSegmentId, moveId, this.minSegmentDuration_s);
     if (segments.length === 0) {
       this.skippedZeroLength++;
@@ -291,31 +346,75 @@ export class TrajectoryQueue implements QueueView {
     return { moveId, segmentIds: segments.length === 1 ? [segments[0].id] : segments.map((s) => s.id), skipped: false };
   }
 
+  /**
+   * Appends a linear move as one segment in the columnar tail: segmentsForMove's
+   * one-piece case (moves.ts), without making the object. Returns null, with nothing
+   * changed, for a zero-length move (the object path skips it or makes it a dwell).
+   */
+  private enqueueLine(move: ValidatedMove, moveId: number): MoveReceipt | null {
+    const tail = this.tail;
+    const line = this.line;
+    const unit = tail.unit === this.unitBuffers[0] ? this.unitBuffers[1] : this.unitBuffers[0];
+    const length = directionInto(tail.position, move.end, unit);
+    if (length < ZERO_LENGTH_MM) return null;
+    const limits = this.config.limits;
+    const cruise2 = floorCruise2(lineCruise2(limits, move, unit), length, this.minSegmentDuration_s);
+    line.id = this.nextSegmentId++;
+    line.moveId = moveId;
+    line.source = move;
+    line.start = tail.position;
+    line.unit = unit;
+    line.length = length;
+    line.accel = lineAccel(limits, move, unit);
+    line.cruise2 = cruise2;
+    line.maxEntry2 = entryCap2(limits, tail.unit, tail.cruise2, unit, cruise2, true);
+    line.actuatorStart = actuatorPosition(this.config.transforms, tail.position);
+    this.pending.push(line);
+    this.planner.append(length, line.accel, line.maxEntry2);
+    tail.position = move.end;
+    tail.unit = unit;
+    tail.cruise2 = cruise2;
+    return { moveId, segmentIds: [line.id], skipped: false };
+  }
+
+  /** Moves the columnar tail into `live` as objects, so that the untransmitted path is all objects. */
+  private materialize(): void {
+    if (this.pending.size === 0) return;
+    const segments = this.pending.takeAll();
+    for (let i = 0; i < segments.length; i++) this.live.push(segments[i]);
+    this.untransmitted += segments.length;
+  }
+
   // --- editing ---
 
   /** Cancels an untransmitted move (all its segments). Later moves now start where the one before it ended. */
   cancel(moveId: number): void {
+    this.materialize();
     this.edit(this.untransmittedIndexOf(moveId), null, true);
   }
 
   /** Replaces an untransmitted move by another. Later moves keep their end positions. */
   replace(moveId: number, move: Move): MoveReceipt {
+    this.materialize();
     const index = this.untransmittedIndexOf(moveId);
     return this.edit(index, this.validate(move, this.live[index].start), true) as MoveReceipt;
   }
 
   /** Cancels an untransmitted move (all its segments) and every move after it. */
   cancelMovesFrom(moveId: number): void {
+    this.materialize();
     this.edit(this.untransmittedIndexOf(moveId), null, false);
   }
 
   /** Cancels every untransmitted segment. */
   cancelAll(): void {
+    this.materialize();
     if (this.untransmitted > 0) this.edit(this.live.length - this.untransmitted, null, false);
   }
 
   /** Cancels the untransmitted segment `id` and everything after it. */
   cancelFrom(id: number): void {
+    this.materialize();
     const first = this.live.length - this.untransmitted;
     const index = this.live.findIndex((seg, i) => i >= first && seg.id === id);
     if (index < 0) {
@@ -333,6 +432,7 @@ export class TrajectoryQueue implements QueueView {
    * the split. Returns the two pieces.
    */
   splitFront(distance: number): [Segment, Segment] {
+    this.materialize();
     const index = this.live.length - this.untransmitted;
     const seg = this.live[index];
     if (!seg) throw new MaxlError('SEGMENT_NOT_FOUND', 'there is no untransmitted segment to split');
@@ -351,6 +451,7 @@ export class TrajectoryQueue implements QueueView {
    * hold back, or to cancel from), or null if the path ends first.
    */
   brakeToRest(): Segment | null {
+    this.materialize();
     let v2 = this.planner.frontSpeed2;
     const first = this.live.length - this.untransmitted;
     for (let i = first; i < this.live.length; i++) {
@@ -424,11 +525,7 @@ export class TrajectoryQueue implements QueueView {
    * their order; planned states are recomputed.
    */
   private replanFrom(index: number, change: () => void): void {
-    const firstUntransmitted = this.live.length - this.untransmitted;
-    const wasPlanned = this.live.slice(firstUntransmitted).filter((seg) => seg.state === 'planned');
-    for (let i = firstUntransmitted; i < this.live.length; i++) this.live[i].state = 'unplanned';
-    this.newlyPlanned = [];
-    this.planner.truncate(index - firstUntransmitted);
+    const wasPlanned = this.reopenPlanFrom(index, false);
     change();
     for (let i = index; i < this.live.length; i++) this.planner.appendBlock(this.live[i]);
     this.settleReplan(wasPlanned);
@@ -462,12 +559,7 @@ export class TrajectoryQueue implements QueueView {
     const later: Segment[] = []; // one segment per later move, carrying its source move
     if (keepLater) for (const seg of removed) if (seg.moveId !== editedMove && seg.moveId !== later[later.length - 1]?.moveId) later.push(seg);
     const oldTail = { ...this.tail };
-
-    // Every untransmitted segment is replanned; onPlanned marks the final ones again.
-    const wasPlanned = this.live.slice(firstUntransmitted).filter((seg) => seg.state === 'planned');
-    for (let i = firstUntransmitted; i < this.live.length; i++) this.live[i].state = 'unplanned';
-    this.newlyPlanned = [];
-    this.truncateTo(index, planIndex);
+    const wasPlanned = this.reopenPlanFrom(index, true);
     const before = this.live[index - 1] as Segment | undefined;
     if (before) tailAfter(before, this.tail);
     else Object.assign(this.tail, { position: removed[0].start, unit: null, cruise2: 0 });
@@ -497,6 +589,22 @@ export class TrajectoryQueue implements QueueView {
     this.flushPlanned();
     this.wakeWaiters();
     return receipt;
+  }
+
+  /**
+   * Opens a replan from live[index], the first step of every edit: every
+   * untransmitted segment becomes unplanned (onPlanned marks the final ones again),
+   * and the planner drops its blocks from live[index] on; with `cut`, so does live.
+   * Returns the segments that were planned, for settleReplan once the edit is done.
+   */
+  private reopenPlanFrom(index: number, cut: boolean): Segment[] {
+    const firstUntransmitted = this.live.length - this.untransmitted;
+    const wasPlanned = this.live.slice(firstUntransmitted).filter((seg) => seg.state === 'planned');
+    for (let i = firstUntransmitted; i < this.live.length; i++) this.live[i].state = 'unplanned';
+    this.newlyPlanned = [];
+    if (cut) this.truncateTo(index, index - firstUntransmitted);
+    else this.planner.truncate(index - firstUntransmitted);
+    return wasPlanned;
   }
 
   private truncateTo(index: number, planIndex: number): void {
@@ -545,7 +653,7 @@ export class TrajectoryQueue implements QueueView {
       for (const t of tracks) values[t.channel] = t.values[t.values.length - 1];
       this.lockedEventValues = values;
     }
-    this.onTransmitted?.(seg);
+    this.history?.push(seg);
     if (this.listeners.length > 0) this.emit('transmitted', [seg]);
     this.flushPlanned();
     this.wakeWaiters();
@@ -553,11 +661,64 @@ export class TrajectoryQueue implements QueueView {
   }
 
   /**
+   * Locks the first untransmitted segment as transmitNext() does, and has it run at
+   * once: everything transmitted before it retires as it starts, and it is recorded
+   * in the history as executed (a dry run's executor: dryRun.ts). A columnar
+   * segment (pendingSegments.ts) that sets no event, with nobody listening, is
+   * timed and recorded from its columns and never made into an object; any other
+   * goes through transmitNext() and stays live, transmitted, until the next.
+   * Returns its duration (s), or −1 when nothing is queued.
+   */
+  executeFrontNow(earliestStart_us: number): number {
+    if (this.untransmitted > 0 || this.pending.size === 0 || this.listeners.length > 0) return this.executeObjectFront(earliestStart_us);
+    const f = this.pending.readFront(this.front);
+    if (f.events.length > 0) return this.executeObjectFront(earliestStart_us);
+    const start_us = this.nextStart_us(earliestStart_us);
+    // Whatever was transmitted ends by start_us (the transmitted path's end, or earlier).
+    if (this.head < this.live.length) this.retireUntil(start_us);
+    // As timeFront() and transmitNext(): a final plan's entry, else the front speed; the exit is lockFront()'s.
+    const entry2 = f.planned ? f.entry2 : this.planner.frontSpeed2;
+    this.pending.dropFront();
+    const exit2 = this.planner.lockFront();
+    // Segment.time()'s trapezoid and duration, written to a buffer instead of a new array.
+    const n = writeTrapezoid(this.timingBuffer, 0, f.length, entry2, exit2, f.cruise2, f.accel) * PHASE_STRIDE;
+    const duration_s = n === 0 ? 0 : this.timingBuffer[n - PHASE_STRIDE] + this.timingBuffer[n - PHASE_STRIDE + 1];
+    this.lockedEnd_us = start_us + duration_s * 1e6;
+    this.lockedExit2 = exit2;
+    if (this.history) {
+      const r = this.record;
+      r.startTime_us = start_us;
+      r.duration_s = duration_s;
+      r.length = f.length;
+      r.actuatorStart = f.actuatorStart;
+      r.actuatorRate = f.actuatorStart.length > 0 ? actuatorRate(f.actuatorStart, f.actuatorEnd as number[], f.length) : f.actuatorStart;
+      r.eventsAtStart = this.lockedEventValues;
+      this.history.pushRecord(r, this.timingBuffer, n, f.start, f.unit, null);
+    }
+    this.flushPlanned();
+    this.wakeWaiters();
+    return duration_s;
+  }
+
+  /** executeFrontNow() for a segment that must be an object: transmitted, and what ran before it retired. */
+  private executeObjectFront(earliestStart_us: number): number {
+    const seg = this.transmitNext(earliestStart_us);
+    if (seg === undefined) return -1;
+    this.retireUntil(seg.startTime_us);
+    return seg.duration_s;
+  }
+
+  /**
    * The first untransmitted segment, timed as transmitNext() would lock it now
    * (its exit speed as the plan stands, if that is not final yet).
    */
   timeFront(): Segment | undefined {
-    if (this.untransmitted === 0) return undefined;
+    if (this.untransmitted === 0) {
+      if (this.pending.size === 0) return undefined;
+      // The front is columnar: its object is made now, as it is about to be sent.
+      this.live.push(this.pending.takeFront());
+      this.untransmitted = 1;
+    }
     const next = this.live[this.live.length - this.untransmitted];
     if (next.state !== 'planned') {
       next.entry2 = this.planner.frontSpeed2;
@@ -620,6 +781,7 @@ export class TrajectoryQueue implements QueueView {
    * Returns the untransmitted segments, in order.
    */
   restartFrom(stop: PathPoint, rerun: readonly Segment[], rejoinFrom: number[] | null): Segment[] {
+    this.materialize();
     const first = this.live.length - this.untransmitted;
     const stopIndex = this.live.indexOf(stop.segment);
     const kept = stopIndex >= first ? this.live.slice(stopIndex + 1) : this.live.slice(first);
@@ -664,6 +826,11 @@ export class TrajectoryQueue implements QueueView {
 
   /** The planner's report of a final plan, by offset from the first untransmitted segment. */
   private onPlanned(offset: number, entry2: number, exit2: number): void {
+    if (offset >= this.untransmitted) {
+      // In the columnar tail: the object, when made, is planned and timed from these.
+      this.pending.setPlanned(offset - this.untransmitted, entry2, exit2);
+      return;
+    }
     const seg = this.live[this.live.length - this.untransmitted + offset];
     seg.entry2 = entry2;
     seg.exit2 = exit2;

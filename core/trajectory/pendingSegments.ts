@@ -1,0 +1,267 @@
+/**
+ * The queue's columnar tail: untransmitted segments kept as numbers, not objects,
+ * until someone needs them as `Segment`s.
+ *
+ * A queue that plans ahead holds hundreds to tens of thousands of untransmitted
+ * segments (as deep as braking needs: queue.ts hasRoom). Kept as objects, each
+ * (a Segment, its unit vector, its timing) outlives several young-generation
+ * collections, which copy it, then promote it: a profile of the planner bench
+ * found the collector at 12–30 % of the time. Kept here, a queued segment costs
+ * one slot of each column, allocated once: its move's numbers (end position, speed
+ * and acceleration caps) are copied into columns, so the validated move and its
+ * end array die young, and only what is shared (the move's event specs, usually
+ * one empty array for all) or made by a transform (actuator positions) is
+ * referenced. The validated move is made again, equal, when the object is.
+ *
+ * The store holds one kind of segment only, the common one: a linear move that
+ * became a single segment (no nonlinear transform subdividing it), not a dwell.
+ * Its moveOffset is 0, its end is its move's end, and its move has no other
+ * segment (so the move made again for it is not shared with another segment). The queue (queue.ts) makes a `Segment` of a slot when it is
+ * transmitted (takeFront), and turns the whole store into objects (takeAll) before
+ * anything else reads or edits the untransmitted path: a listener, the read-only
+ * view, an edit, a split, a restart. The object it makes is the one the queue
+ * keeps from then on, so a segment's identity never changes.
+ *
+ * Slots form a ring: entry i (0 = the oldest) lives at slot (head + i) & mask, and
+ * the ring doubles when full.
+ */
+import type { ResolvedEventSpec } from './events.ts';
+import { actuatorRate } from './moves.ts';
+import { Segment } from './segment.ts';
+import { ValidatedMove } from './validatedMove.ts';
+
+const INITIAL_CAPACITY = 1024;
+
+/** A single-segment linear move's inputs, as the queue computed them at the tail. */
+export interface PendingLine {
+  id: number;
+  moveId: number;
+  source: ValidatedMove;
+  /** The segment's start (motion axes); copied. */
+  start: readonly number[];
+  /** Unit direction, motion axes; copied. */
+  unit: readonly number[];
+  length: number;
+  accel: number;
+  cruise2: number;
+  maxEntry2: number;
+  /** Actuators at the start (kept by reference; the shared empty array without transforms). */
+  actuatorStart: number[];
+}
+
+/** The oldest segment's fields, as readFront() copies them into an object its caller reuses. */
+export interface PendingFront {
+  /** Written in place: as many numbers as motion axes. */
+  start: number[];
+  unit: number[];
+  events: readonly ResolvedEventSpec[];
+  actuatorStart: number[];
+  /** The move's actuators at its end (null only for a dwell, never held here). */
+  actuatorEnd: number[] | null;
+  length: number;
+  accel: number;
+  cruise2: number;
+  /** Whether its plan is final; entry2 is meaningful only then. */
+  planned: boolean;
+  entry2: number;
+}
+
+/** Doubles per slot in the position columns. */
+type Columns = Float64Array<ArrayBuffer>;
+
+export class PendingSegments {
+  private readonly axes: number;
+  private mask = INITIAL_CAPACITY - 1;
+  private head = 0;
+  private count = 0;
+  private ids: Columns = new Float64Array(INITIAL_CAPACITY);
+  private moveIds: Columns = new Float64Array(INITIAL_CAPACITY);
+  private lengths: Columns = new Float64Array(INITIAL_CAPACITY);
+  private accels: Columns = new Float64Array(INITIAL_CAPACITY);
+  private cruise2s: Columns = new Float64Array(INITIAL_CAPACITY);
+  private maxEntry2s: Columns = new Float64Array(INITIAL_CAPACITY);
+  private entry2s: Columns = new Float64Array(INITIAL_CAPACITY);
+  private exit2s: Columns = new Float64Array(INITIAL_CAPACITY);
+  /** The move's caps: mm/s and mm/s² (Infinity for the machine's limits). */
+  private maxVelocities: Columns = new Float64Array(INITIAL_CAPACITY);
+  private maxAccelerations: Columns = new Float64Array(INITIAL_CAPACITY);
+  /** 1 once the planner reported the segment's final plan. */
+  private planned = new Uint8Array(INITIAL_CAPACITY);
+  /** Start and end positions and unit vectors, `axes` numbers a slot. */
+  private starts: Columns;
+  private ends: Columns;
+  private units: Columns;
+  private events: (readonly ResolvedEventSpec[] | undefined)[] = new Array(INITIAL_CAPACITY);
+  private actuatorStarts: (number[] | undefined)[] = new Array(INITIAL_CAPACITY);
+  private actuatorEnds: (number[] | null | undefined)[] = new Array(INITIAL_CAPACITY);
+
+  constructor(axes: number) {
+    this.axes = axes;
+    this.starts = new Float64Array(INITIAL_CAPACITY * axes);
+    this.ends = new Float64Array(INITIAL_CAPACITY * axes);
+    this.units = new Float64Array(INITIAL_CAPACITY * axes);
+  }
+
+  /** Segments held. */
+  get size(): number {
+    return this.count;
+  }
+
+  /** Appends a segment at the end of the path, unplanned. */
+  push(line: PendingLine): void {
+    if (this.count > this.mask) this.grow();
+    const s = (this.head + this.count) & this.mask;
+    this.count++;
+    const move = line.source;
+    this.ids[s] = line.id;
+    this.moveIds[s] = line.moveId;
+    this.lengths[s] = line.length;
+    this.accels[s] = line.accel;
+    this.cruise2s[s] = line.cruise2;
+    this.maxEntry2s[s] = line.maxEntry2;
+    this.entry2s[s] = 0;
+    this.exit2s[s] = 0;
+    this.maxVelocities[s] = move.maxVelocity;
+    this.maxAccelerations[s] = move.maxAcceleration;
+    this.planned[s] = 0;
+    const a = this.axes;
+    const o = s * a;
+    for (let i = 0; i < a; i++) {
+      this.starts[o + i] = line.start[i];
+      this.ends[o + i] = move.end[i];
+      this.units[o + i] = line.unit[i];
+    }
+    this.events[s] = move.events;
+    this.actuatorStarts[s] = line.actuatorStart;
+    this.actuatorEnds[s] = move.actuatorEnd;
+  }
+
+  /** Records the final plan of the i-th segment held (0 = the oldest). */
+  setPlanned(i: number, entry2: number, exit2: number): void {
+    const s = (this.head + i) & this.mask;
+    this.entry2s[s] = entry2;
+    this.exit2s[s] = exit2;
+    this.planned[s] = 1;
+  }
+
+  /** Removes the oldest segment and returns it as a Segment (planned and timed if its plan is final). */
+  takeFront(): Segment {
+    if (this.count === 0) throw new Error('PendingSegments.takeFront: empty');
+    const seg = this.segmentAt(this.head);
+    this.dropFront();
+    return seg;
+  }
+
+  /** Copies the oldest segment's fields into `out` (its start and unit in place), without making an object. */
+  readFront(out: PendingFront): PendingFront {
+    if (this.count === 0) throw new Error('PendingSegments.readFront: empty');
+    const s = this.head;
+    const a = this.axes;
+    for (let i = 0; i < a; i++) {
+      out.start[i] = this.starts[s * a + i];
+      out.unit[i] = this.units[s * a + i];
+    }
+    out.events = this.events[s] as readonly ResolvedEventSpec[];
+    out.actuatorStart = this.actuatorStarts[s] as number[];
+    out.actuatorEnd = this.actuatorEnds[s] as number[] | null;
+    out.length = this.lengths[s];
+    out.accel = this.accels[s];
+    out.cruise2 = this.cruise2s[s];
+    out.planned = this.planned[s] === 1;
+    out.entry2 = this.entry2s[s];
+    return out;
+  }
+
+  /** Removes the oldest segment. */
+  dropFront(): void {
+    if (this.count === 0) throw new Error('PendingSegments.dropFront: empty');
+    this.release(this.head);
+    this.head = (this.head + 1) & this.mask;
+    this.count--;
+  }
+
+  /** Removes every segment and returns them as Segments, in path order. */
+  takeAll(): Segment[] {
+    const out = new Array<Segment>(this.count);
+    for (let i = 0; i < out.length; i++) {
+      const s = (this.head + i) & this.mask;
+      out[i] = this.segmentAt(s);
+      this.release(s);
+    }
+    this.head = 0;
+    this.count = 0;
+    return out;
+  }
+
+  /** The Segment of slot s, as segmentsForMove (moves.ts) would have made it, with its plan. */
+  private segmentAt(s: number): Segment {
+    const a = this.axes;
+    const o = s * a;
+    const start = Array.from(this.starts.subarray(o, o + a));
+    const end = Array.from(this.ends.subarray(o, o + a));
+    const unit = Array.from(this.units.subarray(o, o + a));
+    const actuatorEnd = this.actuatorEnds[s] as number[] | null;
+    const source = new ValidatedMove(end, this.maxVelocities[s], this.events[s] as ResolvedEventSpec[], null, this.maxAccelerations[s], actuatorEnd);
+    const length = this.lengths[s];
+    const seg = new Segment(this.ids[s], this.moveIds[s], start, end, unit, length, 0, source);
+    const a0 = this.actuatorStarts[s] as number[];
+    seg.actuatorStart = a0;
+    seg.actuatorRate = a0.length > 0 ? actuatorRate(a0, actuatorEnd as number[], length) : a0;
+    seg.accel = this.accels[s];
+    seg.cruise2 = this.cruise2s[s];
+    seg.maxEntry2 = this.maxEntry2s[s];
+    if (this.planned[s] === 1) {
+      seg.entry2 = this.entry2s[s];
+      seg.exit2 = this.exit2s[s];
+      seg.state = 'planned';
+      seg.time();
+    }
+    return seg;
+  }
+
+  /** Drops slot s's references, so that the store keeps nothing alive once a segment left it. */
+  private release(s: number): void {
+    this.events[s] = undefined;
+    this.actuatorStarts[s] = undefined;
+    this.actuatorEnds[s] = undefined;
+  }
+
+  /** Doubles the ring, moving the entries to slots 0 … count − 1. */
+  private grow(): void {
+    const capacity = 2 * (this.mask + 1);
+    const order = <T extends Columns | Uint8Array<ArrayBuffer>>(from: T, stride: number, make: (n: number) => T): T => {
+      const to = make(capacity * stride);
+      for (let i = 0; i < this.count; i++) {
+        const s = (this.head + i) & this.mask;
+        for (let k = 0; k < stride; k++) to[i * stride + k] = from[s * stride + k];
+      }
+      return to;
+    };
+    const f64 = (n: number): Columns => new Float64Array(n);
+    const orderRefs = <T>(from: (T | undefined)[]): (T | undefined)[] => {
+      const to = new Array<T | undefined>(capacity);
+      for (let i = 0; i < this.count; i++) to[i] = from[(this.head + i) & this.mask];
+      return to;
+    };
+    const a = this.axes;
+    this.ids = order(this.ids, 1, f64);
+    this.moveIds = order(this.moveIds, 1, f64);
+    this.lengths = order(this.lengths, 1, f64);
+    this.accels = order(this.accels, 1, f64);
+    this.cruise2s = order(this.cruise2s, 1, f64);
+    this.maxEntry2s = order(this.maxEntry2s, 1, f64);
+    this.entry2s = order(this.entry2s, 1, f64);
+    this.exit2s = order(this.exit2s, 1, f64);
+    this.maxVelocities = order(this.maxVelocities, 1, f64);
+    this.maxAccelerations = order(this.maxAccelerations, 1, f64);
+    this.planned = order(this.planned, 1, (n) => new Uint8Array(n));
+    this.starts = order(this.starts, a, f64);
+    this.ends = order(this.ends, a, f64);
+    this.units = order(this.units, a, f64);
+    this.events = orderRefs(this.events);
+    this.actuatorStarts = orderRefs(this.actuatorStarts);
+    this.actuatorEnds = orderRefs(this.actuatorEnds);
+    this.head = 0;
+    this.mask = capacity - 1;
+  }
+}
