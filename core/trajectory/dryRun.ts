@@ -32,8 +32,8 @@ export class DryRun {
   takeFront(): Segment | undefined {
     const seg = this.queue.transmitNext(0);
     if (seg === undefined) return undefined;
-    // Executed as soon as it is sent: everything up to its start is history now.
-    this.queue.retireUntil(seg.startTime_us);
+    // Executed as soon as it is sent: it, and everything before it, is history now.
+    this.queue.retireUntil(seg.endTime_us);
     this.segments++;
     this.duration_s += seg.duration_s;
     this.onSegment?.(seg);

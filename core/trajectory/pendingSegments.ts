@@ -53,6 +53,7 @@ export interface PendingLine {
 export interface PendingFront {
   /** Written in place: as many numbers as motion axes. */
   start: number[];
+  end: number[];
   unit: number[];
   events: readonly ResolvedEventSpec[];
   actuatorStart: number[];
@@ -159,6 +160,7 @@ export class PendingSegments {
     const a = this.axes;
     for (let i = 0; i < a; i++) {
       out.start[i] = this.starts[s * a + i];
+      out.end[i] = this.ends[s * a + i];
       out.unit[i] = this.units[s * a + i];
     }
     out.events = this.events[s] as readonly ResolvedEventSpec[];

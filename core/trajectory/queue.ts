@@ -114,6 +114,17 @@ export class TrajectoryQueue implements QueueView {
   /** End of the last transmitted segment: author µs, and whether the machine is still moving there. */
   private lockedEnd_us = -Infinity;
   private lockedExit2 = 0;
+  /**
+   * The path's tail at the end of the transmitted path (tailAfter the last transmitted
+   * segment, copied): where an edit of the first untransmitted move starts again, as
+   * the last transmitted segment may no longer be held. Unknown before anything is
+   * transmitted and after a restart (the untransmitted path then starts from rest).
+   */
+  private lockedTailKnown = false;
+  private readonly lockedPosition: number[];
+  private readonly lockedUnit: number[];
+  private lockedHasUnit = false;
+  private lockedCruise2 = 0;
   /** Event channel values at the end of the transmitted path. */
   private lockedEventValues: number[];
   private listeners: QueueListener[] = [];
@@ -141,7 +152,9 @@ export class TrajectoryQueue implements QueueView {
     this.columnar = !hasNonlinearTransform(config);
     this.unitBuffers = [new Array<number>(axes).fill(0), new Array<number>(axes).fill(0)];
     const zeros = () => new Array<number>(axes).fill(0);
-    this.front = { start: zeros(), unit: zeros(), events: [], actuatorStart: [], actuatorEnd: null, length: 0, accel: 0, cruise2: 0, planned: false, entry2: 0 };
+    this.lockedPosition = zeros();
+    this.lockedUnit = zeros();
+    this.front = { start: zeros(), end: zeros(), unit: zeros(), events: [], actuatorStart: [], actuatorEnd: null, length: 0, accel: 0, cruise2: 0, planned: false, entry2: 0 };
     this.line = { id: 0, moveId: 0, source: null as unknown as ValidatedMove, start: position, unit: this.unitBuffers[0], length: 0, accel: 0, cruise2: 0, maxEntry2: 0, actuatorStart: [] };
   }
 
@@ -560,9 +573,11 @@ export class TrajectoryQueue implements QueueView {
     if (keepLater) for (const seg of removed) if (seg.moveId !== editedMove && seg.moveId !== later[later.length - 1]?.moveId) later.push(seg);
     const oldTail = { ...this.tail };
     const wasPlanned = this.reopenPlanFrom(index, true);
-    const before = this.live[index - 1] as Segment | undefined;
-    if (before) tailAfter(before, this.tail);
-    else Object.assign(this.tail, { position: removed[0].start, unit: null, cruise2: 0 });
+    // The tail before the first segment removed: the untransmitted one before it, else the transmitted path's end.
+    if (index > this.live.length - this.untransmitted) tailAfter(this.live[index - 1], this.tail);
+    else if (this.lockedTailKnown) {
+      Object.assign(this.tail, { position: [...this.lockedPosition], unit: this.lockedHasUnit ? [...this.lockedUnit] : null, cruise2: this.lockedCruise2 });
+    } else Object.assign(this.tail, { position: removed[0].start, unit: null, cruise2: 0 });
 
     const added: Segment[] = [];
     const receipt = replacement ? this.enqueue(replacement, this.nextMoveId++, added) : undefined;
@@ -653,6 +668,7 @@ export class TrajectoryQueue implements QueueView {
       for (const t of tracks) values[t.channel] = t.values[t.values.length - 1];
       this.lockedEventValues = values;
     }
+    this.setLockedTail(seg.end, seg.isDwell ? null : seg.unit, seg.isDwell ? 0 : seg.cruise2);
     this.history?.push(seg);
     if (this.listeners.length > 0) this.emit('transmitted', [seg]);
     this.flushPlanned();
@@ -685,6 +701,12 @@ export class TrajectoryQueue implements QueueView {
     const duration_s = n === 0 ? 0 : this.timingBuffer[n - PHASE_STRIDE] + this.timingBuffer[n - PHASE_STRIDE + 1];
     this.lockedEnd_us = start_us + duration_s * 1e6;
     this.lockedExit2 = exit2;
+    this.setLockedTail(f.end, f.unit, f.cruise2);
+    // Nothing before it is held any more (all ran), so live holds no segment out of path order.
+    if (this.head === this.live.length && this.head > 0) {
+      this.live.length = 0;
+      this.head = 0;
+    }
     if (this.history) {
       const r = this.record;
       r.startTime_us = start_us;
@@ -700,12 +722,21 @@ export class TrajectoryQueue implements QueueView {
     return duration_s;
   }
 
-  /** executeFrontNow() for a segment that must be an object: transmitted, and what ran before it retired. */
+  /** executeFrontNow() for a segment that must be an object: transmitted, then retired with all before it. */
   private executeObjectFront(earliestStart_us: number): number {
     const seg = this.transmitNext(earliestStart_us);
     if (seg === undefined) return -1;
-    this.retireUntil(seg.startTime_us);
+    this.retireUntil(seg.endTime_us);
     return seg.duration_s;
+  }
+
+  /** Records the tail at the end of the transmitted path (copies, so later appends and locks cannot change it). */
+  private setLockedTail(end: readonly number[], unit: readonly number[] | null, cruise2: number): void {
+    for (let i = 0; i < end.length; i++) this.lockedPosition[i] = end[i];
+    this.lockedHasUnit = unit !== null;
+    if (unit !== null) for (let i = 0; i < unit.length; i++) this.lockedUnit[i] = unit[i];
+    this.lockedCruise2 = cruise2;
+    this.lockedTailKnown = true;
   }
 
   /**
@@ -812,6 +843,7 @@ export class TrajectoryQueue implements QueueView {
     this.untransmitted = this.live.length;
     for (const seg of this.live) this.planner.appendBlock(seg);
     this.lockedExit2 = 0;
+    this.lockedTailKnown = false;
     this.lockedEventValues = events;
     if (this.live.length === 0) Object.assign(this.tail, { position: pointPosition(stop), unit: null, cruise2: 0 });
     this.emit('removed', dropped);
