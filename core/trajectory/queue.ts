@@ -14,6 +14,11 @@
  * loop of addSegmentToQueue calls paces itself to the machine. An executor (the device sessions, or a dry run) takes
  * segments from the front with transmitNext() and retires them with retireUntil()
  * as time passes.
+ *
+ * Untransmitted single-segment lines appended while nobody listens are kept as
+ * columns (pendingSegments.ts), not objects, until a segment is transmitted or the
+ * untransmitted path is read or edited as objects (materialize): a deep lookahead
+ * then costs no garbage-collector time. docs/architecture.md §3 has the rules.
  */
 import { abortedError, MaxlError } from '../errors.ts';
 import type { ResolvedConfig } from '../config/types.ts';
@@ -66,8 +71,9 @@ export interface MoveReceipt {
  * its capacity). 65 536 segments hold the 10.4 mm that braking from 250 mm/s at
  * 3 000 mm/s² needs down to 0.16 µm per segment; on a finer path the plan brakes
  * earlier than it must (slower, never unsafe). It bounds the memory a path of
- * near-zero segments could take: about 0.6 kB a segment (segment objects and the
- * planner's store), 40 MB at the bound.
+ * near-zero segments could take: about 0.2 kB a segment in the columnar tail and
+ * the planner's store (14 MB at the bound), about 0.6 kB as segment objects (a
+ * queue someone listens to: 40 MB).
  */
 export const MAX_LOOKAHEAD_SEGMENTS = 65_536;
 
