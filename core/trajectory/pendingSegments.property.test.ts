@@ -141,6 +141,7 @@ describe('the queue keeps untransmitted lines as columns', () => {
           expect(actual).toEqual(expected);
           expect(queueOf(columns).untransmittedCount).toBe(queueOf(objects).untransmittedCount);
           expect(queueOf(columns).transmittedEnd_us).toBe(queueOf(objects).transmittedEnd_us);
+          expect(queueOf(columns).skippedZeroLength).toBe(queueOf(objects).skippedZeroLength);
         }
         const dryObjects = new DryRun(queueOf(objects));
         const dryColumns = new DryRun(queueOf(columns));

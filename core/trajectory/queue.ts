@@ -367,15 +367,20 @@ export class TrajectoryQueue implements QueueView {
 
   /**
    * Appends a linear move as one segment in the columnar tail: segmentsForMove's
-   * one-piece case (moves.ts), without making the object. Returns null, with nothing
-   * changed, for a zero-length move (the object path skips it or makes it a dwell).
+   * one-piece case (moves.ts), without making the object. A zero-length move that
+   * sets no event is skipped here too; one that sets events (a 0-s dwell) returns
+   * null, with nothing changed, for the object path.
    */
   private enqueueLine(move: ValidatedMove, moveId: number): MoveReceipt | null {
     const tail = this.tail;
     const line = this.line;
     const unit = tail.unit === this.unitBuffers[0] ? this.unitBuffers[1] : this.unitBuffers[0];
     const length = directionInto(tail.position, move.end, unit);
-    if (length < ZERO_LENGTH_MM) return null;
+    if (length < ZERO_LENGTH_MM) {
+      if (move.events.length > 0) return null;
+      this.skippedZeroLength++;
+      return { moveId, segmentIds: [], skipped: true };
+    }
     const limits = this.config.limits;
     const cruise2 = floorCruise2(lineCruise2(limits, move, unit), length, this.minSegmentDuration_s);
     line.id = this.nextSegmentId++;
