@@ -36,7 +36,7 @@ export { evaluateTiming, phasesOf, timingDuration, type Phase, type Timing } fro
 
 // The distributed runtime and what an app sees of it.
 export type { Link } from './net/link.ts';
-export { MAXL_DEFAULT_BAUD, uartBytesPerSecond } from './net/link.ts';
+export { MAXL_DEFAULT_BAUD, uartBytesPerSecond, uartByteTime_us } from './net/link.ts';
 export type { DeviceInfo, ReaderInfo, SessionOptions } from './net/session.ts';
 export type { ReaderKindName } from './net/protocol.ts';
 export type { DeviceReport, RecoveryReport, RuntimeEvent, StopRecord } from './runtime.ts';

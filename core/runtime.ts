@@ -22,7 +22,7 @@ import type { TrajectorySample } from './trajectory/tracks.ts';
 import type { ResolvedConfig } from './config/types.ts';
 import { bindSubscriptions, type DevicePlan } from './net/bindings.ts';
 import { SensorCapture, type SampleGap } from './capture/sensorCapture.ts';
-import type { Link } from './net/link.ts';
+import { checkLinks, type Link } from './net/link.ts';
 import type { MessageOf } from './net/messages.ts';
 import { DeviceState, nameOf, type DeviceStateName } from './net/protocol.ts';
 import { DeviceSession, type DeviceInfo, type SessionOptions } from './net/session.ts';
@@ -166,6 +166,7 @@ export class Runtime {
 
   async begin(): Promise<DeviceInfo[]> {
     if (this.links.length === 0) throw new MaxlError('DEVICE_UNAVAILABLE', 'no links to open: connect a device or choose a simulated machine');
+    checkLinks(this.links);
     this.createSessions();
     const infos = await Promise.all(this.sessions.map((s) => s.open()));
     await this.subscribeAndSync(infos);
@@ -255,6 +256,7 @@ export class Runtime {
     if (this.recovery === 'reconnecting') throw new MaxlError('RECOVERY_ORDER', 'reconnect() is already under way');
     if (this.recovery === 'reconnected') throw new MaxlError('RECOVERY_ORDER', 'already reconnected: call resumeJob() to go on, or discardJob() to drop the rest of the job');
     if (links && links.length === 0) throw new MaxlError('DEVICE_UNAVAILABLE', 'no links to open: connect the devices again');
+    if (links) checkLinks(links);
     this.recovery = 'reconnecting';
     const old = this.streamer;
     const oldSessions = this.sessions.splice(0);

@@ -170,7 +170,7 @@ export class WorkbenchStore {
         return;
       }
       const opened = await openPort(port);
-      this.send({ type: 'add-port', label: opened.label, readable: opened.readable, writable: opened.writable, bytesPerSecond: opened.bytesPerSecond }, [
+      this.send({ type: 'add-port', label: opened.label, readable: opened.readable, writable: opened.writable, bytesPerSecond: opened.bytesPerSecond, uartByteTime_us: opened.uartByteTime_us }, [
         opened.readable as unknown as Transferable,
         opened.writable as unknown as Transferable,
       ]);

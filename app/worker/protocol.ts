@@ -237,6 +237,8 @@ export type Command =
       writable: WritableStream<Uint8Array>;
       /** what the port carries to the board (its UART at the baud it was opened with) */
       bytesPerSecond: number;
+      /** µs a byte on the board's UART (a USB–serial bridge), undefined for native USB (app/worker/uartBridges.ts) */
+      uartByteTime_us: number | undefined;
     }
   | { type: 'remove-device'; id: string }
   | { type: 'set-config'; config: MachineConfig }

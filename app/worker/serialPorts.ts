@@ -11,6 +11,7 @@
 /// <reference types="w3c-web-serial" />
 
 import { MAXL_DEFAULT_BAUD, uartBytesPerSecond } from '../../core/net/link.ts';
+import { portUartByteTime_us } from './uartBridges.ts';
 
 /** What navigator.serial offers (the page's `requestPort` included), and what the polyfill offers in its place. */
 export interface SerialApi {
@@ -105,6 +106,8 @@ export interface OpenedPort {
   writable: WritableStream<Uint8Array>;
   /** What reaches the board: its UART at the baud the port runs at (native-USB boards take more). */
   bytesPerSecond: number;
+  /** µs a byte on the board's UART, if it has a USB–serial bridge (uartBridges.ts); undefined for native USB. */
+  uartByteTime_us: number | undefined;
 }
 
 /** Opens a port (if it is not open yet) at the MAXL baud and returns its streams. */
@@ -113,7 +116,7 @@ export async function openPort(port: SerialPortLike): Promise<OpenedPort> {
   if (!isOpen(port)) await port.open({ baudRate: MAXL_DEFAULT_BAUD });
   const { readable, writable } = port;
   if (!readable || !writable) throw new Error(`${label} opened without streams`);
-  return { label, readable, writable, bytesPerSecond: uartBytesPerSecond(MAXL_DEFAULT_BAUD) };
+  return { label, readable, writable, bytesPerSecond: uartBytesPerSecond(MAXL_DEFAULT_BAUD), uartByteTime_us: portUartByteTime_us(port.getInfo()) };
 }
 
 /** Words for a failed open (in either context) that a user can act on. */

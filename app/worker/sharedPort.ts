@@ -17,6 +17,7 @@ import type { Link } from '../../core/index.ts';
 export class SharedPort {
   readonly label: string;
   readonly bytesPerSecond: number | undefined;
+  readonly uartByteTime_us: number | undefined;
   private readonly writer: WritableStreamDefaultWriter<Uint8Array>;
   private current: ReadableStreamDefaultController<Uint8Array> | null = null;
   private failure: Error | null = null;
@@ -29,6 +30,7 @@ export class SharedPort {
   constructor(port: Link) {
     this.label = port.label ?? 'port';
     this.bytesPerSecond = port.bytesPerSecond;
+    this.uartByteTime_us = port.uartByteTime_us;
     this.writer = port.writable.getWriter();
     this.closeUnderlying = port.close?.bind(port);
     void this.pump(port.readable);
@@ -63,6 +65,7 @@ export class SharedPort {
       writable,
       label: this.label,
       bytesPerSecond: this.bytesPerSecond,
+      uartByteTime_us: this.uartByteTime_us,
       close: async () => {
         open = false;
         if (this.current === controller) this.endCurrent();

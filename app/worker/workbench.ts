@@ -134,7 +134,7 @@ export class Workbench {
           'BRIDGE',
           `${cmd.label}: this browser's workers cannot reach serial ports, so its bytes cross the page, and a busy page can hold them back: the machine streams with ${(BRIDGED_STREAMER.leadMargin_us ?? 0) / 1000} ms of margin.`,
         );
-        void this.addPort({ label: cmd.label, readable: cmd.readable, writable: cmd.writable, bytesPerSecond: cmd.bytesPerSecond }, null);
+        void this.addPort({ label: cmd.label, readable: cmd.readable, writable: cmd.writable, bytesPerSecond: cmd.bytesPerSecond, uartByteTime_us: cmd.uartByteTime_us }, null);
         return;
       case 'remove-device':
         void this.removeDevice(cmd.id);
@@ -271,7 +271,7 @@ export class Workbench {
   }
 
   private async addPort(link: OpenedPort, serialPort: SerialPortLike | null): Promise<void> {
-    const { label, readable, writable, bytesPerSecond } = link;
+    const { label, readable, writable, bytesPerSecond, uartByteTime_us } = link;
     if (this.sim) {
       // A real board joins: the simulated machine goes, the configuration stays for editing.
       await this.closeDevices();
@@ -280,7 +280,7 @@ export class Workbench {
     }
     if (this.scheduler instanceof PacedScheduler) this.useScheduler(new RealScheduler());
     const close = serialPort ? () => serialPort.close() : undefined;
-    const port = new SharedPort({ readable, writable, label, bytesPerSecond, close });
+    const port = new SharedPort({ readable, writable, label, bytesPerSecond, uartByteTime_us, close });
     port.onBroken = (why) =>
       this.log('error', 'PORT_LOST', `${label}: ${why}. Its session is lost: the machine brakes to rest on the path. Plug the board back in and press Add device (or reload the page).`);
     this.devices.push({ id: `port-${this.nextDeviceId++}`, port, simulated: false, bridged: serialPort === null, serialPort, info: null });

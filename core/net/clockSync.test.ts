@@ -67,4 +67,62 @@ describe('ClockSync', () => {
     for (let a = 0; a < 1e6; a += 50_000) sync.add(exchange(rand, a, dev, [100, 1500], [100, 500]));
     expect(Math.abs(sync.clock!.toDeviceExact(1.02e6) - dev(1.02e6))).toBeLessThan(300);
   });
+
+  describe('frames on a UART (an Uno behind its USB bridge): each frame counted by its own bytes', () => {
+    // 10-byte PINGs and 16-byte PONGs at 250 000 baud, 40 µs a byte. The device stamps
+    // the ping at its last byte and the pong at its first; the author reads the pong
+    // at its last byte. Besides the wire, each way waits a USB frame (0–1 ms).
+    const BYTE_US = 40;
+    const PING_BYTES = 10;
+    const PONG_BYTES = 16;
+    function uartRun(counted: boolean, seed: number) {
+      const rand = seededRandom(seed);
+      const ppm = 120;
+      const dev = (a: number) => 7_000_000 + a * (1 + ppm * 1e-6);
+      const sync = new ClockSync();
+      const errors: number[] = [];
+      for (let a = 0; a < 120e6; a += 10_000) {
+        const a1 = a + rand() * 1000;
+        const arrive = Math.ceil(a1 / 1000) * 1000 + 50 + rand() * 100 + PING_BYTES * BYTE_US;
+        const reply = arrive + 20 + rand() * 2000;
+        const back = Math.ceil((reply + PONG_BYTES * BYTE_US) / 1000) * 1000 + 50 + rand() * 100;
+        sync.add({
+          authorSend: a1,
+          authorReceive: back,
+          deviceReceive: Math.floor(dev(arrive)),
+          deviceReply: Math.floor(dev(reply)),
+          ...(counted ? { pingOnWire_us: PING_BYTES * BYTE_US, pongOnWire_us: PONG_BYTES * BYTE_US } : {}),
+        });
+        if (a > 60e6) errors.push(sync.clock!.toDeviceExact(a + 20_000) - dev(a + 20_000));
+      }
+      errors.sort((x, y) => x - y);
+      return { sync, median: errors[errors.length >> 1], worst: Math.max(-errors[0], errors[errors.length - 1]) };
+    }
+
+    it('uncounted, the model is off by half the frames’ difference, (10 − 16)·40/2 = −120 µs', () => {
+      const { median } = uartRun(false, 5);
+      expect(median).toBeGreaterThan(-125);
+      expect(median).toBeLessThan(-115);
+    });
+
+    it('counted, the error is that of a symmetric link (a few µs), and the round trip still includes the wire', () => {
+      for (const seed of [5, 6, 7]) {
+        const { sync, median, worst } = uartRun(true, seed);
+        expect(Math.abs(median)).toBeLessThan(3);
+        expect(worst).toBeLessThan(10);
+        // 26 bytes on the wire (1 040 µs) are part of every round trip.
+        expect(sync.rtt).toBeGreaterThan(26 * BYTE_US);
+      }
+    });
+
+    it('a link without a UART (wire times 0 or absent) gives the same model as before', () => {
+      const stamps = { authorSend: 1000, authorReceive: 3000, deviceReceive: 501_000, deviceReply: 501_500 };
+      const plain = new ClockSync();
+      const zero = new ClockSync();
+      plain.add(stamps);
+      zero.add({ ...stamps, pingOnWire_us: 0, pongOnWire_us: 0 });
+      expect(zero.clock!.toDeviceExact(10_000)).toBe(plain.clock!.toDeviceExact(10_000));
+      expect(zero.rtt).toBe(plain.rtt);
+    });
+  });
 });

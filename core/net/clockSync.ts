@@ -50,6 +50,27 @@
  * Until the window spans half a second the rate is held (1 at first) and only the
  * offset is fitted.
  *
+ * ## Frames take time on a UART
+ * On a board behind a USB–serial bridge (an Uno's 16U2) every byte also crosses a
+ * UART, τ µs a byte (Link.uartByteTime_us: 40 µs at 250 000 baud), and a frame of L
+ * bytes is whole only L·τ after its first byte left. The device stamps the PING when
+ * its last byte (the delimiter) has come, and the PONG as its first byte goes; the
+ * author reads the PONG once its last byte has come. With L↑, L↓ the two frames'
+ * lengths and δ↑, δ↓ the delays that remain (USB frames, the bridge, the firmware's
+ * loop):
+ *   d₁ = D(a₁ + L↑·τ + δ↑)        a₂ = A(d₂) + L↓·τ + δ↓
+ * so the stamps a₁′ = a₁ + L↑·τ and a₂′ = a₂ − L↓·τ are the symmetric exchange above,
+ * and the fit takes those (PingStamps.pingOnWire_us, pongOnWire_us). Uncounted, the
+ * up points sit r·L↑·τ higher and the down points r·L↓·τ lower, and the line midway
+ * between them is off by (L↑ − L↓)·τ/2: a PING is 10 bytes and a PONG 16, so at
+ * 40 µs a byte the device's clock looked 120 µs behind its true time, and every
+ * segment started ~120 µs early (the emulated Uno's steps came 147 µs early; the
+ * rest is the PONG's own wait in the Uno's transmit buffer and the PING's read
+ * latency, which are not symmetric either; README, HIL). A native-USB board, and
+ * the simulator's links, move a frame at once: τ is 0 there, nothing changes. The
+ * round-trip time (rtt) stays the whole trip, wire times included: lead times need
+ * all of it.
+ *
  * The exchanges themselves: the session pings every 4 ms for its first two minutes,
  * then every 25 ms (session.ts).
  *
@@ -67,6 +88,10 @@ export interface PingStamps {
   deviceReceive: number;
   /** device µs (u32) when the pong was written */
   deviceReply: number;
+  /** µs from the ping's first byte to its last on a UART (its length × the byte time; 0 or absent without a UART): see "Frames take time on a UART" */
+  pingOnWire_us?: number;
+  /** the same for the pong */
+  pongOnWire_us?: number;
 }
 
 export interface ClockSyncOptions {
@@ -115,8 +140,9 @@ export class ClockSync {
     const d1 = this.unwrap(stamps.deviceReceive);
     const rate = this.model?.rate ?? 1;
     const rtt = stamps.authorReceive - stamps.authorSend - held / rate;
-    this.a1.push(stamps.authorSend);
-    this.a2.push(stamps.authorReceive);
+    // The fit takes the stamps at the frames' far ends (see "Frames take time on a UART").
+    this.a1.push(stamps.authorSend + (stamps.pingOnWire_us ?? 0));
+    this.a2.push(stamps.authorReceive - (stamps.pongOnWire_us ?? 0));
     this.d1.push(d1);
     this.d2.push(d1 + held);
     this.samples++;

@@ -65,7 +65,8 @@ export class FrameReceiver {
   private overflow = false;
 
   constructor(
-    private readonly onPacket: (packet: RawPacket) => void,
+    /** Each good packet, and the bytes its frame took on the wire (COBS and the delimiter included). */
+    private readonly onPacket: (packet: RawPacket, frameBytes: number) => void,
     private readonly onError: (error: WireError) => void,
   ) {}
 
@@ -96,7 +97,7 @@ export class FrameReceiver {
         }
         throw err;
       }
-      this.onPacket(packet);
+      this.onPacket(packet, n + 1);
     }
   }
 }

@@ -98,6 +98,16 @@ describe('serialport link', () => {
     expect((await reader.read()).done).toBe(true);
   });
 
+  it('declares its bytes/s and, unless told the board is native USB, a UART byte time (10 bits at the baud)', async () => {
+    const [a, b] = await ptyPair();
+    const uno = await open(a);
+    expect(uno.bytesPerSecond).toBe(25_000);
+    expect(uno.uartByteTime_us).toBe(40);
+    const native = await openSerialportLink(b, { baudRate: 115_200, uart: false });
+    closers.push(() => native.close?.() ?? Promise.resolve());
+    expect(native.uartByteTime_us).toBeUndefined();
+  });
+
   it('names the port it could not open', async () => {
     await expect(openSerialportLink('/dev/no-such-maxl-board')).rejects.toMatchObject({
       code: 'DEVICE_UNAVAILABLE',

@@ -12,10 +12,17 @@
  * load its native binding.
  */
 import { MaxlError } from '../errors.ts';
-import { MAXL_DEFAULT_BAUD, uartBytesPerSecond, type Link } from './link.ts';
+import { MAXL_DEFAULT_BAUD, uartByteTime_us, uartBytesPerSecond, type Link } from './link.ts';
 
 export interface SerialportLinkOptions {
   baudRate?: number;
+  /**
+   * Whether the board's processor takes its bytes from a UART behind a USB–serial
+   * bridge (an Uno's 16U2, a CH340, an FTDI): then each byte takes 10 bits at the
+   * baud rate, which clock sync counts (Link.uartByteTime_us). Default true, the
+   * Uno; pass false for a native-USB board (Leonardo, Teensy, RP2040).
+   */
+  uart?: boolean;
 }
 
 /** Minimal shape of serialport's SerialPort that this adapter uses. */
@@ -37,11 +44,11 @@ export async function openSerialportLink(path: string, options: SerialportLinkOp
       err ? reject(new MaxlError('DEVICE_UNAVAILABLE', `cannot open serial port ${path}: ${err.message}`, 'path')) : resolve(p),
     );
   });
-  return serialportLink(port, path, uartBytesPerSecond(baudRate));
+  return serialportLink(port, path, uartBytesPerSecond(baudRate), options.uart === false ? undefined : uartByteTime_us(baudRate));
 }
 
 /** Wraps an open port. Reading ends when the port closes; closing the link closes the port. */
-function serialportLink(port: NodePort, label: string, bytesPerSecond: number): Link {
+function serialportLink(port: NodePort, label: string, bytesPerSecond: number, byteTime_us: number | undefined): Link {
   let closed = false;
   const readable = new ReadableStream<Uint8Array>({
     start(controller) {
@@ -77,6 +84,7 @@ function serialportLink(port: NodePort, label: string, bytesPerSecond: number): 
     writable,
     label,
     bytesPerSecond,
+    uartByteTime_us: byteTime_us,
     close: () =>
       new Promise<void>((resolve) => {
         if (!port.isOpen) return resolve();

@@ -142,7 +142,8 @@ export class DeviceSession implements StreamDevice {
     resend: null,
   };
   private pendingHello: { resolve(info: DeviceInfo): void; reject(err: Error): void; hello?: MessageOf<'HELLO'>; readers: ReaderInfo[] } | null = null;
-  private pings = new Map<number, number>();
+  /** Pings awaiting their pong: when each was written (author µs), and its frame's length in bytes. */
+  private pings = new Map<number, { at: number; frameBytes: number }>();
   private lastHelloRequestAt = -Infinity;
   private burstUntil = -Infinity;
   private openedAt = 0;
@@ -154,7 +155,7 @@ export class DeviceSession implements StreamDevice {
     this.events = events;
     this.options = { ...DEFAULT_SESSION, ...options };
     this.receiver = new FrameReceiver(
-      (p) => this.onPacket(p),
+      (p, frameBytes) => this.onPacket(p, frameBytes),
       (e) => this.events.wireError?.(e),
     );
   }
@@ -374,7 +375,8 @@ export class DeviceSession implements StreamDevice {
     // A ping is stamped as its first copy enters the link. (If that copy was lost, the
     // stamp is early: the exchange then looks slow, which the envelopes ignore.)
     const pingId = out.message.type === 'PING' ? out.message.pingId : -1;
-    this.write(out.frame, pingId >= 0 && !this.pings.has(pingId) ? () => this.pings.set(pingId, this.scheduler.now()) : undefined);
+    const frameBytes = out.frame.length;
+    this.write(out.frame, pingId >= 0 && !this.pings.has(pingId) ? () => this.pings.set(pingId, { at: this.scheduler.now(), frameBytes }) : undefined);
   }
 
   /** Go-back-N: resend every frame in flight from `seq` on. */
@@ -419,7 +421,7 @@ export class DeviceSession implements StreamDevice {
     }
   }
 
-  private onPacket(p: RawPacket): void {
+  private onPacket(p: RawPacket, frameBytes: number): void {
     const now = this.scheduler.now();
     this.heardBefore = this.lastHeard;
     this.lastHeard = now;
@@ -460,7 +462,16 @@ export class DeviceSession implements StreamDevice {
         const sent = this.pings.get(message.pingId);
         if (sent !== undefined) {
           this.pings.delete(message.pingId);
-          this.clock.add({ authorSend: sent, authorReceive: now, deviceReceive: message.rxTime, deviceReply: message.txTime });
+          // Each frame's own time on a UART, if the link has one (clockSync.ts, "Frames take time on a UART").
+          const byte_us = this.link.uartByteTime_us ?? 0;
+          this.clock.add({
+            authorSend: sent.at,
+            authorReceive: now,
+            deviceReceive: message.rxTime,
+            deviceReply: message.txTime,
+            pingOnWire_us: sent.frameBytes * byte_us,
+            pongOnWire_us: frameBytes * byte_us,
+          });
         }
         break;
       }

@@ -30,6 +30,23 @@ describe('begin() refuses', () => {
     expect(err.message).toMatch(/no links to open/);
   });
 
+  it('a link declaring a UART byte time that is not a finite µs ≥ 0: DEVICE_UNAVAILABLE naming the link and the field, before any link is opened', async () => {
+    const scheduler = new VirtualScheduler();
+    const sim = await createSimulatedMachine(blotPlotter(), scheduler, { seed: 1, loader: nodeWasmLoader() });
+    const [good] = Object.values(sim.links);
+    for (const bad of [NaN, -40, Infinity]) {
+      const link = { readable: new ReadableStream<Uint8Array>(), writable: new WritableStream<Uint8Array>(), label: 'uno', uartByteTime_us: bad };
+      const maxl = createMAXL(sim.config, { links: [good, link], scheduler });
+      const err = await refusal(maxl.begin());
+      expect(err.code).toBe('DEVICE_UNAVAILABLE');
+      expect(err.field).toBe('links[1].uartByteTime_us');
+      expect(err.message).toMatch(/link 1 \(uno\) declares uartByteTime_us/);
+      // Nothing was opened: the good link is still free for another author.
+      expect(good.readable.locked).toBe(false);
+      expect(good.writable.locked).toBe(false);
+    }
+  });
+
   it('a subscription to a reader the device does not have: SUBSCRIPTION_MISMATCH naming it', async () => {
     const scheduler = new VirtualScheduler();
     const sim = await createSimulatedMachine(blotPlotter(), scheduler, { seed: 1, loader: nodeWasmLoader() });

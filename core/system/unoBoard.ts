@@ -198,6 +198,7 @@ export async function startUnoBoard(options: UnoBoardOptions = {}): Promise<UnoB
         writable,
         label: port.label,
         bytesPerSecond: port.bytesPerSecond,
+        uartByteTime_us: port.uartByteTime_us,
         close: async () => {
           linkOpen = false;
           readWaiter?.();

@@ -54,11 +54,14 @@
  * output is dropped once the pty's buffer is full, as a USB-serial chip with no
  * host would.
  *
- * micros(): Arduino's Timer 0 runs at clk/64 and counts overflows (every 1 024
- * cycles) in timer0_overflow_count; micros() = (overflows·256 + TCNT0)·4. The
- * first time the count changes to n, at cycle c, the overflow happened at
- * c − k, k being the interrupt's latency up to the store (~40 cycles, ~3 µs),
- * so micros() read 0 at cycle c − k − 1 024·n. MICROS0 takes k = 40.
+ * micros(): Arduino's Timer 0 runs at clk/64 and counts its overflows in
+ * timer0_overflow_count; micros() = (overflows·256 + TCNT0)·4. An overflow comes
+ * every 256 counts of 64 cycles: 16 384 cycles, 1 024 µs. The first time the count
+ * changes to n, at cycle c, the overflow happened at c − k, k being the
+ * interrupt's latency up to the store (~40 cycles, ~3 µs), so micros() read 0 at
+ * cycle c − k − 16 384·n. MICROS0 takes k = 40. (This said 1 024 cycles an
+ * overflow until the HIL test compared the clock model with it: MICROS0 was then
+ * 960 µs late.)
  */
 #define _GNU_SOURCE
 #include <errno.h>
@@ -79,6 +82,7 @@
 
 #define F_CPU 16000000ULL
 #define ISR_STORE_LATENCY 40
+#define CYCLES_PER_OVERFLOW (64ULL * 256ULL) /* Timer 0 at clk/64, 8 bits */
 
 static avr_t *avr;
 static int master = -1, slave = -1;
@@ -238,7 +242,7 @@ int main(int argc, char **argv) {
       uint32_t n = (uint32_t)avr->data[overflowAddr] | (uint32_t)avr->data[overflowAddr + 1] << 8 |
                    (uint32_t)avr->data[overflowAddr + 2] << 16 | (uint32_t)avr->data[overflowAddr + 3] << 24;
       if (n != lastOverflows && lastOverflows == 0 && n > 0) {
-        printf("MICROS0 %llu\n", (unsigned long long)(avr->cycle - ISR_STORE_LATENCY - 1024ULL * n));
+        printf("MICROS0 %llu\n", (unsigned long long)(avr->cycle - ISR_STORE_LATENCY - CYCLES_PER_OVERFLOW * n));
         micros0Known = 1;
       }
       lastOverflows = n;

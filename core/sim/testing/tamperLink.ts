@@ -37,5 +37,5 @@ export function tamperLink(link: Link, type: Message['type'], tamper: Tamper): L
     },
     close: () => writer.close(),
   });
-  return { readable: link.readable, writable, label: link.label, close: link.close?.bind(link), bytesPerSecond: link.bytesPerSecond };
+  return { readable: link.readable, writable, label: link.label, close: link.close?.bind(link), bytesPerSecond: link.bytesPerSecond, uartByteTime_us: link.uartByteTime_us };
 }
