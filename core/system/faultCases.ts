@@ -46,6 +46,8 @@ export interface FaultCase {
   device?: string;
   /** Byte corruption probability, both directions of every link (kind 'corrupt'). */
   corruption?: number;
+  /** How far the device's µs counter jumps (kind 'clockJump'; default +50 000: ahead; < 0: back). */
+  jump_us?: number;
 }
 
 export interface FaultOutcome {
@@ -122,7 +124,7 @@ async function inject(b: Bench, c: FaultCase, device: string): Promise<(() => vo
       await b.sim.reboot(device);
       return null;
     case 'clockJump':
-      b.sim.jumpClock(device, 50_000);
+      b.sim.jumpClock(device, c.jump_us ?? 50_000);
       return null;
     case 'latency': {
       // Both directions 200 ms slower for 200 ms, then as before.
