@@ -9,7 +9,8 @@
  *   - corrupt1e-2: the same at 10⁻²: completes, or stops on the path and resumes;
  *   - latency: both directions of one board's link 200 ms slower for 200 ms;
  *   - reboot: one board restarts mid-job (fresh firmware, micros() from 0);
- *   - clockJump: one board's µs counter jumps 50 ms ahead mid-job;
+ *   - clockJump / clockJumpBack: one board's µs counter jumps 50 ms ahead / 20 ms back
+ *     mid-job (the firmware's check mends its clock and stops taking timing);
  *   - wrap: the link cut just after the board's u32 µs counter wrapped;
  *   - longJob: FAULTS_HOURS (default 8) hours, a stroke every 5 minutes, a 150 ppm crystal.
  * Each case stops (except corruption that resends through), undoes the fault,
@@ -22,7 +23,10 @@
  *   worstLateSteps: worst excess over the plan while followed (> 0 = late or partial segment),
  *   worstEndError_mm: carriage from the job's end at the end,
  *   restSteady / stateOk / resumed: how many cases had motors still at rest, the right
- *   stop reason and "Streaming stopped" words, and ran to the job's end.
+ *   stop reason and "Streaming stopped" words, and ran to the job's end;
+ *   endedBeforeStop: cases whose job had run to its end before the stop (a cut in its
+ *   last moments, detected by the 300 ms silence limit after the end): for them the
+ *   words must say the job "had already run to its end" and reconnect() find nothing left.
  * Survival limits: detection < 500 ms, off the path ≤ 0.03 mm (0.5 mm after a restart,
  * whose position is estimated), back ≤ 0.03 mm, late ≤ 0 steps (not checked after a
  * restart), end ≤ 0.02 mm (0.5 mm after a restart).
@@ -71,6 +75,7 @@ function summarise(rs: FaultOutcome[], mustStop: boolean) {
     restSteady: rs.filter((r) => r.restSteady).length,
     stateOk: rs.filter((r) => r.stateOk).length,
     resumed: rs.filter((r) => r.resumed).length,
+    endedBeforeStop: rs.filter((r) => r.endedBeforeStop).length,
     resends: rs.reduce((n, r) => n + r.resends, 0),
     failed: rs.filter((r) => !survived(r, mustStop)).map((r) => ({ ...r, plan: undefined })),
   };
@@ -103,6 +108,7 @@ for (const preset of presets) {
   for (const kind of ['latency', 'reboot', 'clockJump', 'wrap'] as FaultKind[]) {
     row[kind] = summarise([await runFaultCase({ preset, kind, seed: 79, at: 0.45, device: firstMotor })], true);
   }
+  row.clockJumpBack = summarise([await runFaultCase({ preset, kind: 'clockJump', seed: 80, at: 0.55, device: firstMotor, jump_us: -20_000 })], true);
   matrix[preset] = row;
   log(`${preset} done`);
 }

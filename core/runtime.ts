@@ -24,7 +24,7 @@ import { bindSubscriptions, type DevicePlan } from './net/bindings.ts';
 import { SensorCapture, type SampleGap } from './capture/sensorCapture.ts';
 import { checkLinks, type Link } from './net/link.ts';
 import type { MessageOf } from './net/messages.ts';
-import { DeviceState, nameOf, type DeviceStateName } from './net/protocol.ts';
+import { DeviceState, nameOf, StatusFlag, type DeviceStateName } from './net/protocol.ts';
 import { DeviceSession, type DeviceInfo, type SessionOptions } from './net/session.ts';
 import { Streamer, type StreamerEvent, type StreamerOptions } from './net/streamer.ts';
 import { feedLimit, type FeedLimit } from './net/linkFeedLimit.ts';
@@ -460,6 +460,7 @@ export class Runtime {
    * with one error saying why (later refusals of the same stop are not repeated).
    */
   private onRefused(e: Extract<StreamerEvent, { type: 'refused' }>): void {
+    if (e.reason === 'CLOCK_JUMP') return this.onClockJump(e.device);
     const what = e.reason === 'LATE_SEGMENT' ? 'arrived too late to run (the link or the author fell behind)' : `was refused (${e.reason}, detail ${e.detail})`;
     if (e.message.type === 'EVENTS') {
       this.emit({ type: 'error', error: new MaxlError('DEVICE_REFUSED', `${e.device}: event changes ${what}; the motion goes on`) });
@@ -492,7 +493,25 @@ export class Runtime {
   /** The error that stopped the stream (a refusal, a failing evaluator), for whenIdle() until the job resumes. */
   private stopError: MaxlError | null = null;
 
+  /**
+   * A board's µs counter leapt or ran backwards while it held timing (STATUS flag
+   * clockJump, or its refusal of more TIMING). The board mended its clock and runs
+   * out of the timing it holds (docs/protocol.md §6 "Clock jumps"); streaming stops
+   * for every board, so all run out of the same timing and brake together on the path.
+   */
+  private onClockJump(device: string): void {
+    if (this.streamStopped) return;
+    this.stopStream(
+      device,
+      new MaxlError(
+        'DEVICE_REFUSED',
+        `${device}: its clock jumped (micros() leapt or ran backwards mid-job); it takes no more timing. Streaming stopped: every device comes to rest on the path. Reconnect, then resume the job from there.`,
+      ),
+    );
+  }
+
   private onStatus(session: DeviceSession, s: MessageOf<'STATUS'>, _at: number): void {
+    if (s.flags & StatusFlag.clockJump) this.onClockJump(session.label);
     const state = nameOf(DeviceState, s.state);
     if (state === 'stopped' || state === 'halted') {
       // A board repeats its STATUS every 100 ms while stopped: say each stop once.
@@ -534,15 +553,17 @@ export class Runtime {
   private onLost(session: DeviceSession, reason: string): void {
     if (!this.sessions.includes(session)) return; // a session reconnect() replaced
     const restarted = this.restarted.has(session);
+    // Lost after the job's end: everything was sent, every board had acknowledged all
+    // of it, and the last segment's end time has passed, so every board has run the
+    // job to its end (a cut in its last moments, found by the silence limit after it).
+    const queue = this.host.queue;
+    const jobDone = !restarted && this.streamer?.allAnswered === true && queue.untransmittedCount === 0 && queue.transmittedEnd_us <= this.scheduler.now();
     // Stop timing everything: every device then brakes along the same geometry.
     this.stopOffPlan(restarted ? 'rebooted' : 'lost', session.label, `${session.label}: ${reason}`);
     this.emit({ type: 'device', device: session.label, state: 'lost', reason });
-    this.emit({
-      type: 'error',
-      error: new MaxlError(
-        'LINK_LOST',
-        `${session.label}: ${reason}. Streaming stopped: every device brakes to rest on the path. Check the cable and power, then reconnect and resume the job.`,
-      ),
-    });
+    const after = jobDone
+      ? 'The job had already run to its end on every board: nothing is left to resume. Check the cable and power, then reconnect.'
+      : 'Streaming stopped: every device brakes to rest on the path. Check the cable and power, then reconnect and resume the job.';
+    this.emit({ type: 'error', error: new MaxlError('LINK_LOST', `${session.label}: ${reason}. ${after}`) });
   }
 }

@@ -152,8 +152,10 @@ export function buildVectors(): { protocol: number; vectors: Vector[] } {
     valid('reader', 1, { type: 'READER', index: 1, kind: 5, channels: 3, name: 'accel' }),
     valid('ack', 2, { type: 'ACK', ackSeq: 6, freeSegments: 10, freeEvents: 16 }),
     valid('nack, late segment', 3, { type: 'NACK', seq: 7, reason: 4, detail: 3 }),
+    valid('nack, clock jump', 4, { type: 'NACK', seq: 8, reason: 11, detail: 513 }),
     valid('pong', 4, { type: 'PONG', pingId: 0x0102, rxTime: 1000, txTime: 1012 }),
     valid('status, braking', 5, { type: 'STATUS', now: 123456, state: 2, segmentId: 9, sigma: 0.5, depth: 3, flags: 1 }),
+    valid('status, clock jump while running', 6, { type: 'STATUS', now: 4294967000, state: 1, segmentId: 10, sigma: 0.75, depth: 4, flags: 16 }),
     valid(
       'samples, three channels',
       6,

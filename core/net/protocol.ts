@@ -47,6 +47,8 @@ export const NackReason = {
   OUT_OF_ORDER: 8,
   MALFORMED: 9,
   UNKNOWN_SEGMENT: 10,
+  /** TIMING refused after the device's clock jumped (STATUS flag clockJump), until a new session. */
+  CLOCK_JUMP: 11,
 } as const;
 export type NackReasonName = keyof typeof NackReason;
 
@@ -57,7 +59,7 @@ export const DeviceState = { idle: 0, running: 1, braking: 2, stopped: 3, halted
 export type DeviceStateName = keyof typeof DeviceState;
 
 /** STATUS flags. */
-export const StatusFlag = { starved: 1, late: 2, queueFull: 4, eventOverflow: 8 } as const;
+export const StatusFlag = { starved: 1, late: 2, queueFull: 4, eventOverflow: 8, clockJump: 16 } as const;
 
 /** GEOMETRY flags bit 0 and TIMING flags bit 0. */
 export const HAS_P0 = 1;

@@ -101,6 +101,8 @@ interface DeviceState {
   pendingEvents: MessageOf<'EVENTS'>[];
   /** The last GEOMETRY messages given to the session, with their sequence numbers and segments (newest last). */
   geometryLog: Array<{ seq: number; firstId: number; segments: Segment[]; result: 'pending' | 'ok' | 'refused' }>;
+  /** Frames of the job posted and not answered (an ack or a refusal) yet, or never: lost with the session. */
+  unanswered: number;
 }
 
 const MIN_SPLIT_MM = 0.01;
@@ -146,7 +148,7 @@ export class Streamer {
   ) {
     this.queue = queue;
     this.scheduler = scheduler;
-    this.devices = devices.map((binding) => ({ binding, timedEnd: null, timedEndAuthor: NaN, needP0: true, pendingEvents: [], geometryLog: [] }));
+    this.devices = devices.map((binding) => ({ binding, timedEnd: null, timedEndAuthor: NaN, needP0: true, pendingEvents: [], geometryLog: [], unanswered: 0 }));
     this.onEvent = onEvent;
     this.options = { ...DEFAULT_STREAMER, ...options };
   }
@@ -243,6 +245,11 @@ export class Streamer {
   }
 
   /** The segment a device numbers `wireId`: among those the devices hold, else the last one sent under that id. */
+  /** Whether every device answered every frame of the job posted to it (none in flight, none lost with a link). */
+  get allAnswered(): boolean {
+    return this.devices.every((d) => d.unanswered === 0);
+  }
+
   segmentForWireId(wireId: number): Segment | undefined {
     return this.sent.find((s) => this.wireIds.get(s) === wireId) ?? this.wireLog.get(wireId);
   }
@@ -552,8 +559,10 @@ export class Streamer {
   }
 
   private post(d: DeviceState, m: Message, onResult?: (r: SendResult) => void): void {
+    d.unanswered++;
     d.binding.device.send(m).then(
       (r: SendResult) => {
+        if (r.ok || !r.unsent) d.unanswered--;
         onResult?.(r);
         // A frame the session gave up on as it ended was not refused: the runtime hears of the end itself.
         if (!r.ok && !r.unsent) this.onEvent({ type: 'refused', device: d.binding.name, reason: r.reason, detail: r.detail, message: m });

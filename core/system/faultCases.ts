@@ -15,7 +15,13 @@
  *                     is being followed (before the fault, after the resume): > 0
  *                     would mean a segment executed late or partially
  *   stateOk           maxl.stopped.reason is the fault's, and an error event said
- *                     "Streaming stopped" (the words the workbench shows)
+ *                     "Streaming stopped" (the words the workbench shows); for a
+ *                     stop after the job's end (endedBeforeStop), the words say it
+ *                     "had already run to its end" and reconnect() finds nothing left
+ *   endedBeforeStop   the job had run to its end before the author's stop: its last
+ *                     segment's end time passed and the carriage stood at the job's
+ *                     end point (≤ 0.02 mm) when the stop was recorded (a cut in the
+ *                     job's last moments: the silence limit outlasts the job)
  *   resumed           the job ran to its end: nothing left queued, no stop pending
  *   endError_mm       the carriage's distance from the job's end point at the end:
  *                     a step's rounding (≤ 0.02) except after a board restarted, whose
@@ -40,6 +46,8 @@ export interface FaultCase {
   device?: string;
   /** Byte corruption probability, both directions of every link (kind 'corrupt'). */
   corruption?: number;
+  /** How far the device's µs counter jumps (kind 'clockJump'; default +50 000: ahead; < 0: back). */
+  jump_us?: number;
 }
 
 export interface FaultOutcome {
@@ -57,6 +65,7 @@ export interface FaultOutcome {
   lateSteps: number;
   boardSource: string[];
   stateOk: boolean;
+  endedBeforeStop: boolean;
   resumed: boolean;
   endError_mm: number;
   resends: number;
@@ -115,7 +124,7 @@ async function inject(b: Bench, c: FaultCase, device: string): Promise<(() => vo
       await b.sim.reboot(device);
       return null;
     case 'clockJump':
-      b.sim.jumpClock(device, 50_000);
+      b.sim.jumpClock(device, c.jump_us ?? 50_000);
       return null;
     case 'latency': {
       // Both directions 200 ms slower for 200 ms, then as before.
@@ -143,6 +152,11 @@ const EXPECTED: Record<FaultKind, string[]> = {
   latency: ['refused', 'lost'],
   corrupt: ['refused', 'lost'],
 };
+
+/** Faults the author must detect and report even after the job's end. */
+const MUST_DETECT: FaultKind[] = ['cut', 'wrap', 'reboot'];
+/** How long after such a fault the matrix waits for its stop (the silence limit is 300 ms). */
+const DETECTION_WAIT_US = 2_000_000;
 
 /** Runs one case of the matrix. */
 export async function runFaultCase(c: FaultCase): Promise<FaultOutcome> {
@@ -177,6 +191,7 @@ export async function runFaultCase(c: FaultCase): Promise<FaultOutcome> {
     lateSteps: -Infinity,
     boardSource: [],
     stateOk: true,
+    endedBeforeStop: false,
     resumed: false,
     endError_mm: Infinity,
     resends: 0,
@@ -214,6 +229,7 @@ export async function runFaultCase(c: FaultCase): Promise<FaultOutcome> {
       }
     }
   };
+  const goal = job[job.length - 1];
   const limit = t0 + 20 * duration + 60_000_000;
   let undo: (() => void) | null = null;
   for (;;) {
@@ -233,6 +249,9 @@ export async function runFaultCase(c: FaultCase): Promise<FaultOutcome> {
       out.reasons.push(stop.reason);
       if (out.detection_ms === null) out.detection_ms = (stop.at_us - faultAt) / 1000;
       if (!EXPECTED[c.kind].includes(stop.reason)) out.stateOk = false;
+      const q = b.maxl.queue;
+      const ended = q.untransmittedCount === 0 && q.transmittedEnd_us <= stop.at_us && Math.hypot(...carriage().map((v, i) => v - goal[i])) <= 0.02;
+      if (ended) out.endedBeforeStop = true;
       // Brake, settle, then check the rest: 600 ms, then no step for 200 ms.
       for (let k = 0; k < 600; k++) {
         await b.scheduler.advance(1000);
@@ -245,10 +264,12 @@ export async function runFaultCase(c: FaultCase): Promise<FaultOutcome> {
       }
       if (JSON.stringify(b.sim.plant.motorSteps()) !== steps) out.restSteady = false;
       out.offPathAtRest_mm = Math.max(out.offPathAtRest_mm, tracker.add(carriage()));
-      if (!b.events.some((e) => e.type === 'error' && e.at >= stop.at_us - 1000 && e.text.includes('Streaming stopped'))) out.stateOk = false;
+      const words = ended ? 'had already run to its end' : 'Streaming stopped';
+      if (!b.events.some((e) => e.type === 'error' && e.at >= stop.at_us - 1000 && e.text.includes(words))) out.stateOk = false;
       undo?.();
       undo = null;
       const report = await reconnect(b);
+      if (ended && report.remaining !== 0) out.stateOk = false;
       out.spread_mm = Math.max(out.spread_mm, report.spread_mm);
       out.boardSource.push(...report.boards.map((x) => x.source));
       resuming = true;
@@ -257,7 +278,11 @@ export async function runFaultCase(c: FaultCase): Promise<FaultOutcome> {
       continue;
     }
     const q = b.maxl.queue;
-    if (q.untransmittedCount === 0 && q.transmittedEnd_us < now - 50_000 && now > faultAt) break;
+    const planEnded = q.untransmittedCount === 0 && q.transmittedEnd_us < now - 50_000;
+    // A cut or a restart must be detected even when the job ends before the silence
+    // limit runs out (a cut in its last moments): wait for the stop that long.
+    const detectionDue = MUST_DETECT.includes(c.kind) && out.stops === 0 && now < faultAt + DETECTION_WAIT_US;
+    if (planEnded && now > faultAt && !detectionDue) break;
     if (now > limit) break;
   }
   for (let k = 0; k < 50; k++) {
@@ -265,7 +290,6 @@ export async function runFaultCase(c: FaultCase): Promise<FaultOutcome> {
     sample();
   }
   const end = carriage();
-  const goal = job[job.length - 1];
   out.endError_mm = Math.hypot(...end.map((v, i) => v - goal[i]));
   out.resumed = b.maxl.stopped === null && b.maxl.queue.untransmittedCount === 0 && b.maxl.queue.transmittedEnd_us < b.scheduler.now();
   out.worstBack_mm = Math.max(0, tracker.worstBack - out.spread_mm);

@@ -50,6 +50,8 @@ describe('other faults, then reconnect and resume', () => {
   it.each([
     ['a device restart mid-job', { preset: 'blotPlotter', kind: 'reboot', seed: 41, at: 0.45 }],
     ['a device clock jump (+50 ms)', { preset: 'blotPlotter', kind: 'clockJump', seed: 42, at: 0.55 }],
+    ['a clock jump (+50 ms) on one board of several: the others stop with it on the path', { preset: 'lightPainter', kind: 'clockJump', seed: 47, at: 0.45, device: 'motorA' }],
+    ['a device clock running back (−20 ms)', { preset: 'lightPainter', kind: 'clockJump', seed: 48, at: 0.55, device: 'motorB', jump_us: -20_000 }],
     ['a 200 ms latency spike', { preset: 'blotPlotter', kind: 'latency', seed: 43, at: 0.35 }],
     ['a cut just after the board’s u32 µs counter wrapped', { preset: 'blotPlotter', kind: 'wrap', seed: 44, at: 0.3 }],
     ['byte corruption 1e-2 on every link', { preset: 'blotPlotter', kind: 'corrupt', seed: 45, at: 0, corruption: 1e-2 }],
@@ -65,6 +67,16 @@ describe('other faults, then reconnect and resume', () => {
     expectSurvived(noisy, false);
     expect(noisy.plan.length).toBe(clean.plan.length);
     clean.plan.forEach((p, k) => p.forEach((v, i) => expect(noisy.plan[k][i]).toBeCloseTo(v, 6)));
+  }, 120_000);
+});
+
+describe('a cut in the job\'s last moments', () => {
+  it('the job runs to its end on the boards; the loss is still detected and said, with nothing left to resume', async () => {
+    // 96 % in: the job ends ~100 ms later, the 300 ms silence limit after that.
+    const r = await runFaultCase({ preset: 'accelRig', kind: 'cut', seed: 36, at: 0.96, device: 'accelerometer' });
+    expect(r.endedBeforeStop).toBe(true);
+    expect(r.reasons).toEqual(['lost']);
+    expectSurvived(r); // detected < 500 ms after the cut, words "had already run to its end", reconnect() finds nothing left
   }, 120_000);
 });
 

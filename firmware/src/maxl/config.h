@@ -77,6 +77,20 @@
 #define MAXL_STATUS_PERIOD_US 100000UL
 #endif
 
+// The clock-jump check (docs/protocol.md §6 "Clock jumps", firmware/README.md):
+// while the device runs or waits for timing, two successive loop() reads of
+// micros() must differ by 0..MAXL_CLOCK_JUMP_US µs. A free-running counter
+// never runs backwards, and between two loop() calls it advances by the
+// longest loop() times (1 + its rate error): the step lead below already
+// requires loop() to come back within MAXL_STEP_LEAD_US (3 ms), and a crystal's
+// or resonator's rate error (< 0.5 %) adds under 15 µs to that, so 10 ms leaves
+// room for a sketch's own work. Outside that the counter jumped: the device
+// mends its clock (the loop is taken to have lasted no time), takes no more
+// timing, and says so (STATUS flag `clock jump`). 0 leaves the check out.
+#ifndef MAXL_CLOCK_JUMP_US
+#define MAXL_CLOCK_JUMP_US 10000UL
+#endif
+
 // Bytes of a STATUS or SAMPLES frame handed to the serial port per loop()
 // (0: the whole frame at once). Pacing keeps one loop() short, so steps stay
 // on time while a report goes out. Replies to the author's frames are always

@@ -17,6 +17,7 @@ MAXL_Device::MAXL_Device(const char* name)
       rx_(frameBuffer_),
       tx_(frameBuffer_),
       now_(0),
+      clockSkew_(0),
       lastStatusAt_(0),
       velocity_(0.0f),
       acceleration_(0.0f),
@@ -28,6 +29,7 @@ MAXL_Device::MAXL_Device(const char* name)
       accelerationValid_(false),
       statusPending_(false),
       pongPending_(false),
+      clockWatched_(false),
       pongId_(0),
       pongReceivedAt_(0),
       pongDueAt_(0),
@@ -44,8 +46,33 @@ void MAXL_Device::begin() {
   session_.end();
   resetSession();
   for (MAXL_Reader* r = MAXL_Reader::first(); r; r = r->next()) r->onBegin();
-  now_ = hal::micros();
+  now_ = clockNow();
   lastStatusAt_ = now_;
+}
+
+// now_ = the device clock, checked for a jump (config.h MAXL_CLOCK_JUMP_US).
+// While timing is held, the step d from the last read must lie in
+// [0, MAXL_CLOCK_JUMP_US]. Outside it the counter jumped by d − (the loop's
+// real length); that length is unknown but at most the bound, so the jump is
+// mended as if the loop had taken no time (clockSkew_ += d: the clock goes on
+// from the last read, off by at most one loop). Nothing is evaluated at the
+// jumped time, so the readers never move ahead or back along the path. The
+// device then takes no more TIMING (nack CLOCK_JUMP) and reports the flag at
+// once: it runs out of what it holds and brakes to rest on the path, as every
+// other board does once the author stops streaming. Nothing resets the skew
+// but power: a new session simply runs on the mended clock.
+void MAXL_Device::readClock() {
+  uint32_t t = clockNow();
+#if MAXL_CLOCK_JUMP_US
+  int32_t d = timeDiff(t, now_);
+  if (clockWatched_ && (d < 0 || d > (int32_t)MAXL_CLOCK_JUMP_US)) {
+    clockSkew_ += (uint32_t)d;
+    t = now_;
+    flags_ |= status_flag::CLOCK_JUMP;
+    statusPending_ = true;
+  }
+#endif
+  now_ = t;
 }
 
 // A new session (HELLO_REQUEST), or power-up: nothing queued, nothing
@@ -66,8 +93,10 @@ void MAXL_Device::loop() {
   if (!begun_) return;
   pumpTransmit();
   pollLink();
-  now_ = hal::micros();
+  readClock();
   motion_.tick(now_);
+  // Timing queued (waiting or running) or braking: the next read is checked.
+  clockWatched_ = motion_.statusState() == state::RUNNING || motion_.statusState() == state::BRAKING;
   velocityValid_ = accelerationValid_ = false;
   for (MAXL_Reader* r = MAXL_Reader::first(); r; r = r->next())
     if (r->subscribed()) r->onTick(*this);

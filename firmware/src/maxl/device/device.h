@@ -40,11 +40,14 @@ class MAXL_Device {
   const char* name() const { return name_; }
 
   // ---- clocks
-  // Device time of the current loop() (µs, the u32 micros() counter).
+  // Device time of the current loop() (µs: the u32 micros() counter, less
+  // the clock jumps mended since power-up; see readClock()).
   uint32_t now() const { return now_; }
+  // The device clock at this instant (micros() less the jumps mended).
+  uint32_t clockNow() const { return maxl_fw::hal::micros() - clockSkew_; }
   // The author's ("machine") time now and at a device time, from CLOCK; until
   // a CLOCK arrives, the device time itself (see clockKnown()).
-  uint32_t machineTime() const { return clock_.authorTime(maxl_fw::hal::micros()); }
+  uint32_t machineTime() const { return clock_.authorTime(clockNow()); }
   uint32_t machineTimeAt(uint32_t deviceTime) const { return clock_.authorTime(deviceTime); }
   bool clockKnown() const { return clock_.known(); }
 
@@ -125,6 +128,7 @@ class MAXL_Device {
   void forgetEventTracksFrom(uint16_t segmentId);
 
   // runtime (device.cpp)
+  void readClock();
   void resetSession();
   void fireEvents();
   void reportStatus();
@@ -143,6 +147,7 @@ class MAXL_Device {
   maxl_fw::ClockModel clock_;
   EventTrack eventTracks_[MAXL_EVENT_SLOTS];
   uint32_t now_;
+  uint32_t clockSkew_;  // micros() − device time: the sum of the jumps mended
   uint32_t lastStatusAt_;
   float velocity_;
   float acceleration_;
@@ -155,6 +160,7 @@ class MAXL_Device {
   bool accelerationValid_ : 1;
   bool statusPending_ : 1;  // a STATUS is due but a frame was arriving
   bool pongPending_ : 1;    // a PONG waits for its reply time (PING replyAfter)
+  bool clockWatched_ : 1;   // the last loop() ran or awaited timing: the next read is checked
   uint16_t pongId_;
   uint32_t pongReceivedAt_;
   uint32_t pongDueAt_;

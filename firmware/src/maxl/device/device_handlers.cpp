@@ -123,6 +123,9 @@ MAXL_Device::Answer MAXL_Device::onTiming(const uint8_t* p, uint8_t n) {
   msg::TimingView t;
   if (!t.parse(p, n) || t.count == 0) return nack(nack::MALFORMED, type::TIMING);
   if (!(t.stopDecel > 0.0f) || !isFiniteFloat(t.stopDecel)) return nack(nack::MALFORMED, type::TIMING);
+#if MAXL_CLOCK_JUMP_US
+  if (flags_ & status_flag::CLOCK_JUMP) return nack(nack::CLOCK_JUMP, t.firstId);  // until a new session
+#endif
   SegmentQueue& q = motion_.queue();
   const uint8_t first = q.timed();
   // Timing goes to the first segments without it, and only to queued ones.

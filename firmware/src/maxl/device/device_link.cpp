@@ -22,7 +22,7 @@ void MAXL_Device::pollLink() {
     if (b < 0) return;
     flushTransmit();  // the byte will land in the buffer a paced frame is in
     // PONG.rxTime is the clock when the delimiter was read.
-    FrameReceiver::Result r = rx_.push((uint8_t)b, b == 0 ? hal::micros() : 0);
+    FrameReceiver::Result r = rx_.push((uint8_t)b, b == 0 ? clockNow() : 0);
     if (r == FrameReceiver::PACKET) {
       onPacket();
       return;
@@ -73,7 +73,7 @@ void MAXL_Device::onPacket() {
     case Session::NEW:
       break;
   }
-  now_ = hal::micros();
+  readClock();
   motion_.tick(now_);
   Answer a = handle(t, p, n);
   session_.record(a.reason, a.detail);
@@ -86,7 +86,7 @@ void MAXL_Device::onPacket() {
 void MAXL_Device::startSession(uint8_t seq, uint8_t protocol) {
   resetSession();
   session_.start();
-  lastStatusAt_ = now_ = hal::micros();
+  lastStatusAt_ = now_ = clockNow();
   if (protocol != PROTOCOL_VERSION) {
     session_.record(nack::VERSION_MISMATCH, PROTOCOL_VERSION);
     sendAnswer(seq, nack::VERSION_MISMATCH, PROTOCOL_VERSION);
@@ -152,7 +152,7 @@ void MAXL_Device::sendReader(uint8_t index) {
 // buffer is free once the ping was parsed), or from loop() when its reply time
 // has come, paced out like STATUS.
 void MAXL_Device::sendPong(bool paced) {
-  msg::Pong pong = {pongId_, pongReceivedAt_, hal::micros()};
+  msg::Pong pong = {pongId_, pongReceivedAt_, clockNow()};
   msg::write(beginFrame(type::PONG), pong);
   if (paced) sendFramePaced();
   else sendFrame();

@@ -14,7 +14,11 @@ MAXL_SensorWriter::MAXL_SensorWriter(const char* name, uint8_t channels)
       t0_(0),
       last_(0) {}
 
-bool MAXL_SensorWriter::write(const float* values) { return writeAt(maxl_fw::hal::micros(), values); }
+// Stamped with the device clock (mended after a jump, device.cpp readClock()).
+bool MAXL_SensorWriter::write(const float* values) {
+  MAXL_Device* d = MAXL_Device::instance();
+  return writeAt(d ? d->clockNow() : maxl_fw::hal::micros(), values);
+}
 
 bool MAXL_SensorWriter::writeAt(uint32_t deviceTime, const float* values) {
   if (!subscribed()) return false;

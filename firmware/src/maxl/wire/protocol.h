@@ -54,6 +54,7 @@ const uint8_t VERSION_MISMATCH = 7;
 const uint8_t OUT_OF_ORDER = 8;
 const uint8_t MALFORMED = 9;
 const uint8_t UNKNOWN_SEGMENT = 10;
+const uint8_t CLOCK_JUMP = 11;  // TIMING after the device clock jumped (§6)
 // OUT_OF_ORDER detail meaning "no session yet: send HELLO_REQUEST" (§3).
 const uint16_t NO_SESSION_DETAIL = 0x100;
 }  // namespace nack
@@ -82,6 +83,7 @@ const uint8_t STARVED = 1 << 0;
 const uint8_t LATE = 1 << 1;
 const uint8_t QUEUE_FULL = 1 << 2;
 const uint8_t EVENT_OVERFLOW = 1 << 3;
+const uint8_t CLOCK_JUMP = 1 << 4;  // micros() leapt or ran backwards while timed (§6)
 }  // namespace status_flag
 
 const uint8_t GEOMETRY_HAS_P0 = 1 << 0;
