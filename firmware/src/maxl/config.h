@@ -155,6 +155,15 @@
 #define MAXL_EVAL_PREPARE 1
 #endif
 
+// A transmit buffer of its own (FRAME_BUFFER_SIZE more bytes of RAM). With 0
+// (the default) one buffer serves both directions, so a report (SAMPLES,
+// STATUS, a paced PONG) waits while a frame is being received; a sensor writer
+// whose batch is full then refuses the next sample. A sketch that samples fast
+// (the Accelerometer example, 1 kHz) sets it to 1: its reports never wait.
+#ifndef MAXL_TX_BUFFER
+#define MAXL_TX_BUFFER 0
+#endif
+
 // HALT mode 1, "brake along the path from time `at`" (protocol §4, §6). 0
 // leaves it out: mode 1 is then answered MALFORMED like an unknown mode. The
 // TypeScript author never sends it (it pauses and cancels by planning to rest,
