@@ -146,7 +146,7 @@
 // ordinary evaluation, the next segment's tracks at the end of its first phase,
 // so that the evaluation in which one segment ends and the next one's short
 // first phase ends too does not also do that phase's multiplies. 0 leaves it
-// out (~600 bytes of flash, 18 bytes of RAM on an Uno): that evaluation then
+// out (~700 bytes of flash, 18 bytes of RAM on an Uno): that evaluation then
 // costs up to ~1 860 cycles instead of ~1 240 (the spiral of npm run bench --
 // firmware, two slots).
 // Sketches whose steppers all step from the step timer do not need it: there an
