@@ -177,13 +177,15 @@ describe('the Stepper example on an emulated Uno, over a pty at 250 000 baud', (
     expect(events.filter((x) => x.e.type === 'error')).toEqual([]);
   });
 
-  it('streams a long move at 100 mm/s (8 000 steps/s) and back: no byte lost, every step on plan', async () => {
-    // loop() now empties the UART's 64-byte ring every pass; it took one frame per pass
-    // before, and a loop() that planned steps for longer than the ring's 2.6 ms while the
-    // stream's frames came in lost bytes (NACK BAD_CRC, resent).
+  it('streams 120 mm at 100 mm/s (8 000 steps/s) in 3 mm segments, and back: no byte lost, every step on plan', async () => {
+    // Short segments make bursts of frames (the streamer fills the Uno's 10-segment queue)
+    // while the board steps at 8 kHz; loop() empties the UART's 64-byte ring every pass.
+    // (This run also passes with the earlier one-frame-per-pass loop(): the byte loss once
+    // seen at 100 mm/s is not reproduced by it; firmware/README.md, HIL.)
     const from = board.edges.length;
     const nacksBefore = badCrcNacks;
-    for (const x of [150, 30]) void maxl.addSegmentToQueue({ endPosition: [x] });
+    for (let x = 33; x <= 150; x += 3) void maxl.addSegmentToQueue({ endPosition: [x] });
+    for (let x = 147; x >= 30; x -= 3) void maxl.addSegmentToQueue({ endPosition: [x] });
     let idle = false;
     void maxl.whenIdle().then(() => (idle = true));
     const start = board.scheduler.now();
@@ -198,7 +200,7 @@ describe('the Stepper example on an emulated Uno, over a pty at 250 000 baud', (
     figures.longMoveStepLateMedian_us = Math.round(check.medianLate_us);
     figures.longMoveStepLateMaxAbs_us = Math.round(check.maxAbsLate_us);
     console.log(
-      `HIL long move at 100 mm/s: ${edges.length} steps, ${badCrcNacks - nacksBefore} BAD_CRC nacks, lateness median ${check.medianLate_us.toFixed(0)} µs, worst ${check.maxAbsLate_us.toFixed(0)} µs`,
+      `HIL 120 mm at 100 mm/s in 3 mm segments and back: ${edges.length} steps, ${badCrcNacks - nacksBefore} BAD_CRC nacks, lateness median ${check.medianLate_us.toFixed(0)} µs, worst ${check.maxAbsLate_us.toFixed(0)} µs`,
     );
     expect(badCrcNacks - nacksBefore).toBe(0);
     expect(check.worstExcess, check.worstEdge).toBeLessThanOrEqual(0);
