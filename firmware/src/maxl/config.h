@@ -142,6 +142,28 @@
 #define MAXL_STEPPER_POLLING 1
 #endif
 
+// Work spread ahead at segment boundaries (motion.h, prepareNext()): in an
+// ordinary evaluation, the next segment's tracks at the end of its first phase,
+// so that the evaluation in which one segment ends and the next one's short
+// first phase ends too does not also do that phase's multiplies. 0 leaves it
+// out (~700 bytes of flash, 18 bytes of RAM on an Uno): that evaluation then
+// costs up to ~1 860 cycles instead of ~1 240 (the spiral of npm run bench --
+// firmware, two slots).
+// Sketches whose steppers all step from the step timer do not need it: there an
+// evaluation's length does not move any step.
+#ifndef MAXL_EVAL_PREPARE
+#define MAXL_EVAL_PREPARE 1
+#endif
+
+// A transmit buffer of its own (FRAME_BUFFER_SIZE more bytes of RAM). With 0
+// (the default) one buffer serves both directions, so a report (SAMPLES,
+// STATUS, a paced PONG) waits while a frame is being received; a sensor writer
+// whose batch is full then refuses the next sample. A sketch that samples fast
+// (the Accelerometer example, 1 kHz) sets it to 1: its reports never wait.
+#ifndef MAXL_TX_BUFFER
+#define MAXL_TX_BUFFER 0
+#endif
+
 // HALT mode 1, "brake along the path from time `at`" (protocol §4, §6). 0
 // leaves it out: mode 1 is then answered MALFORMED like an unknown mode. The
 // TypeScript author never sends it (it pauses and cancels by planning to rest,
