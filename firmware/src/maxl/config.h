@@ -142,13 +142,15 @@
 #define MAXL_STEPPER_POLLING 1
 #endif
 
-// Work spread ahead at segment boundaries (motion.h, prepareNext()): in an
-// ordinary evaluation, the next segment's tracks at the end of its first phase,
-// so that the evaluation in which one segment ends and the next one's short
-// first phase ends too does not also do that phase's multiplies. 0 leaves it
-// out (~700 bytes of flash, 18 bytes of RAM on an Uno): that evaluation then
-// costs up to ~1 860 cycles instead of ~1 240 (the spiral of npm run bench --
-// firmware, two slots).
+// Work spread ahead of the evaluation (motion.h): in an ordinary evaluation,
+// the next segment's tracks at the end of its first phase (prepareNext()), so
+// that the evaluation in which one segment ends and the next one's short first
+// phase ends too does not also do that phase's multiplies; and, when timing is
+// marked (markTimed()), the float work of the last timed segment's end (at rest
+// there, or starved?). 0 leaves both out (~900 bytes of flash, 20 bytes of RAM
+// on an Uno): the evaluation at a short first phase then costs up to ~1 860
+// cycles instead of ~1 240 (the spiral of npm run bench -- firmware, two
+// slots), and the one in which the timing runs out ~3 100.
 // Sketches whose steppers all step from the step timer do not need it: there an
 // evaluation's length does not move any step.
 #ifndef MAXL_EVAL_PREPARE

@@ -1,6 +1,8 @@
 #include "maxl/motion/motion.h"
 
 #include <math.h>
+#include <stddef.h>
+#include <string.h>
 
 #include "maxl/motion/profile.h"
 #include "maxl/time/wrap.h"
@@ -19,42 +21,18 @@ inline int32_t wrapAdd(int32_t a, int32_t b) { return (int32_t)((uint32_t)a + (u
 inline float deltaOf(int32_t p0, int32_t p1) { return (float)((int64_t)p1 - (int64_t)p0); }
 }  // namespace
 
+// Every member after the queue starts at zero (IDLE, false, 0, 0.0f: IEEE
+// zero is all zero bytes), so one fill clears them, ~60 bytes of AVR code
+// where a store per member took ~400; the epoch alone goes on (changed()), so a
+// lookahead from before the reset is stale. motion.h keeps mode_ the first of
+// them, after the queue.
 __attribute__((noinline)) void Motion::reset() {
-  changed();
+  static_assert(offsetof(Motion, mode_) >= offsetof(Motion, queue_) + sizeof(SegmentQueue),
+                "reset() clears from mode_ to the end: the queue must come before it");
+  uint8_t epoch = epoch_;
   queue_.clear(0);
-  mode_ = IDLE;
-  activeSlots_ = 0;
-  knownSlots_ = 0;
-  phase_ = 0;
-  headStarted_ = false;
-  starved_ = false;
-  haltPending_ = false;
-  timingGiven_ = false;
-  floatValid_ = false;
-  brakeStops_ = false;
-  endKnown_ = false;
-  endAtRest_ = false;
-  endId_ = 0;
-#if MAXL_EVAL_PREPARE
-  nextLow_ = 0;
-  for (uint8_t i = 0; i < MAXL_POSITION_SLOTS; i++) nextP_[i] = nextB_[i] = 0;
-#endif
-#if MAXL_HALT_BRAKE
-  haltSegment_ = 0;
-  haltAt_ = 0;
-#endif
-  lastId_ = 0;
-  lastSigma_ = 0.0f;
-  chunkStart_ = phaseStart_ = phaseEnd_ = 0;
-  stopDecel_ = 0.0f;
-  length_ = 0.0f;
-  phaseSigma_ = phaseNu_ = phaseAcc_ = 0.0f;
-  brakeEndSigma_ = brakeExitSpeed_ = 0.0f;
-  for (uint8_t i = 0; i < MAXL_POSITION_SLOTS; i++) {
-    track_[i].P = track_[i].B = track_[i].C = 0;
-    pos_[i] = 0;
-    base_[i] = 0;
-  }
+  memset(&mode_, 0, sizeof(Motion) - offsetof(Motion, mode_));
+  epoch_ = (uint8_t)(epoch + 1);
 }
 
 uint8_t Motion::statusState() const {
@@ -288,9 +266,14 @@ void Motion::finishSegment(uint32_t t, uint32_t now) {
       enter(t, 0, base_, next.b0);
     return;
   }
-  // The last timed segment: at rest at its end, or starved. markTimed() has
-  // usually answered that already (the same floats, so the same answer).
+  // The last timed segment: at rest at its end, or starved. With
+  // MAXL_EVAL_PREPARE markTimed() has usually answered that already (the same
+  // floats, so the same answer).
+#if MAXL_EVAL_PREPARE
   bool rest = endKnown_ && endId_ == lastId_ ? endAtRest_ : endsAtRest(s);
+#else
+  bool rest = endsAtRest(s);
+#endif
   float exitSpeed = rest ? 0.0f : exitSpeedOf(s);
   queue_.popHead();
   headStarted_ = false;
@@ -309,11 +292,13 @@ void Motion::finishSegment(uint32_t t, uint32_t now) {
 
 void Motion::markTimed(uint8_t n) {
   queue_.markTimed(n);
+#if MAXL_EVAL_PREPARE
   if (!nextReady_) nextChecked_ = false;  // the head's successor may have timing now
   endKnown_ = n > 0;
   if (!endKnown_) return;
   endId_ = (uint16_t)(queue_.headId() + n - 1);
   endAtRest_ = endsAtRest(queue_.at((uint8_t)(n - 1)));
+#endif
 }
 
 // L·σ'(T): the speed at the end of s, mm/s.

@@ -105,11 +105,12 @@ class Motion {
     stopDecel_ = d;
     endKnown_ = false;
   }
-  // The first n queued segments have timing (queue().markTimed(n)), and the float
-  // work of the last one's end is done now, outside the evaluation: whether the
-  // timing runs out at rest there (L·σ'(T) against stopDecel). So finishing a
-  // segment inside tick() stays integer work unless it has to brake. Anything
-  // that gives timing calls this, not the queue's markTimed().
+  // The first n queued segments have timing (queue().markTimed(n)). With
+  // MAXL_EVAL_PREPARE the float work of the last one's end is done now, outside
+  // the evaluation: whether the timing runs out at rest there (L·σ'(T) against
+  // stopDecel), so finishing a segment inside tick() stays integer work unless
+  // it has to brake (without it, that evaluation does it). Anything that gives
+  // timing calls this, not the queue's markTimed().
   void markTimed(uint8_t n);
   // Called when the queue's timed prefix grew (the handler marked it).
   void timingAdded() { timingGiven_ = true; }
@@ -182,6 +183,8 @@ class Motion {
   static void moveTrackTo(FixedTrack& track, uint32_t& chunkStart, uint32_t t);
   int32_t restPosition(uint16_t segmentId, uint8_t slot) const;
 
+  // reset() sets every member from mode_ on to zero (one fill): keep the
+  // queue first, mode_ next, and zero a valid start for whatever is added.
   SegmentQueue queue_;
   Mode mode_;
   uint8_t activeSlots_;
@@ -193,7 +196,7 @@ class Motion {
   bool timingGiven_ : 1;   // see timingGiven()
   bool floatValid_ : 1;    // phaseSigma_/phaseNu_ are those of the current phase
   bool brakeStops_ : 1;
-  bool endKnown_ : 1;      // endId_ ends at rest or not: endAtRest_ (markTimed())
+  bool endKnown_ : 1;      // endId_ ends at rest or not: endAtRest_ (markTimed(), MAXL_EVAL_PREPARE)
   bool endAtRest_ : 1;
   // Work spread ahead (prepareNext()): the tracks of the segment after the
   // head at the end of its phase 0, worked out in an ordinary tick, so that the
@@ -208,7 +211,9 @@ class Motion {
   int32_t nextB_[MAXL_POSITION_SLOTS];
 #endif
   uint8_t epoch_;
+#if MAXL_EVAL_PREPARE
   uint16_t endId_;         // the last timed segment when markTimed() ran
+#endif
   uint16_t lastId_;        // where the device is when not moving
   float lastSigma_;
 #if MAXL_HALT_BRAKE
