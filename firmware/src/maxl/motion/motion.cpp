@@ -169,7 +169,7 @@ void Motion::enter(uint32_t t, uint8_t k, const int32_t* P, const int32_t* B) {
     track->B = *B++;
     track->C = signedCoefficient(sign, *cmag++);
   }
-  nextReady_ = nextChecked_ = false;  // prepare for the segment after this one
+  forgetNext();  // prepare for the segment after this one
   phase_ = k;
   chunkStart_ = phaseStart_ = t;
   phaseEnd_ = t + s.durations[k];
@@ -270,11 +270,13 @@ void Motion::finishSegment(uint32_t t, uint32_t now) {
   // MAXL_EVAL_PREPARE markTimed() has usually answered that already (the same
   // floats, so the same answer).
 #if MAXL_EVAL_PREPARE
-  bool rest = endKnown_ && endId_ == lastId_ ? endAtRest_ : endsAtRest(s);
+  bool known = endKnown_ && endId_ == lastId_;
+  bool knownAtRest = endAtRest_;
 #else
-  bool rest = endsAtRest(s);
+  const bool known = false, knownAtRest = false;
 #endif
-  float exitSpeed = rest ? 0.0f : exitSpeedOf(s);
+  float exitSpeed = known && knownAtRest ? 0.0f : exitSpeedOf(s);
+  bool rest = known ? knownAtRest : atRest(exitSpeed, stopDecel_);
   queue_.popHead();
   headStarted_ = false;
   if (rest) {
@@ -543,7 +545,7 @@ bool Motion::haltBrakeAt(uint32_t now, uint32_t at) {
 
 void Motion::dropFrom(uint8_t index) {
   queue_.truncate(index);
-  nextReady_ = nextChecked_ = false;  // the segment after the head may be another one now
+  forgetNext();  // the segment after the head may be another one now
 #if MAXL_HALT_BRAKE
   if (haltPending() && (uint16_t)(haltSegment_ - queue_.headId()) >= index) haltPending_ = false;
 #endif

@@ -103,7 +103,9 @@ class Motion {
   // Set it before markTimed(): a new deceleration drops what markTimed() prepared.
   void setStopDecel(float d) {
     stopDecel_ = d;
+#if MAXL_EVAL_PREPARE
     endKnown_ = false;
+#endif
   }
   // The first n queued segments have timing (queue().markTimed(n)). With
   // MAXL_EVAL_PREPARE the float work of the last one's end is done now, outside
@@ -178,7 +180,13 @@ class Motion {
   void refreshFloatPhase();
   void changed() {
     epoch_++;
+    forgetNext();
+  }
+  // What prepareNext() worked out is for another successor now (or none).
+  void forgetNext() {
+#if MAXL_EVAL_PREPARE
     nextReady_ = nextChecked_ = false;
+#endif
   }
   static void moveTrackTo(FixedTrack& track, uint32_t& chunkStart, uint32_t t);
   int32_t restPosition(uint16_t segmentId, uint8_t slot) const;
@@ -196,6 +204,7 @@ class Motion {
   bool timingGiven_ : 1;   // see timingGiven()
   bool floatValid_ : 1;    // phaseSigma_/phaseNu_ are those of the current phase
   bool brakeStops_ : 1;
+#if MAXL_EVAL_PREPARE
   bool endKnown_ : 1;      // endId_ ends at rest or not: endAtRest_ (markTimed(), MAXL_EVAL_PREPARE)
   bool endAtRest_ : 1;
   // Work spread ahead (prepareNext()): the tracks of the segment after the
@@ -205,7 +214,6 @@ class Motion {
   // that phase's multiplies as well (finishSegment()). MAXL_EVAL_PREPARE (config.h).
   bool nextChecked_ : 1;   // prepareNext() has run for the head's successor
   bool nextReady_ : 1;     // nextP_ and nextB_ hold them
-#if MAXL_EVAL_PREPARE
   uint8_t nextLow_;        // low byte of the id of the segment they are for
   int32_t nextP_[MAXL_POSITION_SLOTS];  // each slot's P and B there
   int32_t nextB_[MAXL_POSITION_SLOTS];

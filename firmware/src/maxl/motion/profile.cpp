@@ -80,11 +80,10 @@ void sigmaAt(const Segment& seg, uint32_t tau, float& sigma, float& nu, float& a
   }
 }
 
-// sigmaAt() at the end (τ past T is clamped to T): the same operations as a
-// walk of its own (ν += ck·α·dk, in that order), one loop less of code.
 float exitNu(const Segment& seg) {
-  float sigma, nu, acc;
-  sigmaAt(seg, 0xFFFFFFFFUL, sigma, nu, acc);
+  float nu = seg.nu0;
+  for (uint8_t k = 0; k < seg.phaseCount; k++)
+    nu += (float)seg.phaseSign(k) * seg.alpha * ((float)seg.durations[k] * 1e-6f);
   return nu;
 }
 
