@@ -21,6 +21,9 @@
  *   samplesLost        samples reported lost over the sweeps (clean links: 0)
  *   lossyRun           on a link corrupting 3e-3 of the bytes: samples taken, received, and
  *                      reported lost; exact when received + reported = taken
+ *   tenMinuteRun       600 s of capture (LONG_S) at the example's 1 kHz on a link corrupting
+ *                      1e-3 of the bytes: the span (s), the rate (samples taken / span), samples
+ *                      taken (ground truth), received and reported lost, the gaps, exact as above
  */
 import { runCaptureOnAccelRig } from '../core/system/captureRun.ts';
 import type { TestMotion } from '../core/capture/testMotions.ts';
@@ -65,6 +68,27 @@ const lossyRun = {
 };
 await lossy.bench.sim.stop();
 
+// Ten simulated minutes at the example's rate (1 kHz) on a link that corrupts 1e-3 of the
+// bytes to the author: one slow sweep (10 → 45 Hz over 600 s). The u16 batch numbers wrap
+// every 65 536 batches (3 samples each: 197 s at 1 kHz), three times here.
+const LONG_S = Number(process.env.LONG_S ?? 600);
+const long = await runCaptureOnAccelRig({ ...SWEEP, hzPerSecond: 35 / LONG_S }, 11, { links: { accelerometer: { toAuthor: { corruptionProbability: 1e-3 } } } });
+const longTimes = long.capture.timeColumn();
+const longSpan_s = (longTimes[long.firstSample + long.samplesReceived - 1] - longTimes[long.firstSample]) / 1e6;
+const tenMinuteRun = {
+  seconds: Number(longSpan_s.toFixed(1)),
+  sampleRateHz: Number(((long.samplesExpected - 1) / longSpan_s).toFixed(1)),
+  samplesTaken: long.samplesExpected,
+  samplesReceived: long.samplesReceived,
+  samplesReportedLost: long.samplesLostReported,
+  gaps: long.capture.gaps.filter((g) => g.kind === 'lost' && g.index > long.firstSample && g.index < long.firstSample + long.samplesReceived).length,
+  exact: long.samplesReceived + long.samplesLostReported === long.samplesExpected,
+  stampErrorMs: long.stamps.worst_us / 1000,
+  unmatched: long.stamps.unmatched,
+};
+console.log(`ten minutes: ${JSON.stringify(tenMinuteRun)}`);
+await long.bench.sim.stop();
+
 console.log(
   JSON.stringify({
     stampErrorMs: Number((stampError_us / 1000).toFixed(4)),
@@ -78,5 +102,6 @@ console.log(
     samplesReceived,
     seeds: SEEDS,
     lossyRun,
+    tenMinuteRun,
   }),
 );

@@ -31,8 +31,8 @@ export async function startSimulatedMachine(id: string, scheduler: Scheduler, on
   const make = PRESETS[id];
   if (!make) throw new Error(`there is no simulated machine "${id}"`);
   const preset = make();
-  // The page runs for hours: keep only the accelerometer's last 60 000 samples (10 minutes
-  // at 100 Hz) as ground truth, for the capture tool's stamp check.
+  // The page runs for hours: keep only the accelerometer's last 60 000 samples (1 minute at
+  // the Accelerometer example's 1 kHz) as ground truth, for the capture tool's stamp check.
   if (preset.plant.accelerometer) preset.plant.accelerometer = { ...preset.plant.accelerometer, recordSamples: 60_000 };
   // Device loops every 100 µs rather than the presets' 20: in real time every loop
   // costs this worker CPU, and a busy worker delays the author's own timers.

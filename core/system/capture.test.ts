@@ -50,6 +50,12 @@ describe('capture on the accelerometer rig', () => {
     // (chip reads, ground truth) exactly what arrived plus what was reported lost.
     expect(r.samplesLostReported).toBeGreaterThan(0);
     expect(r.samplesReceived + r.samplesLostReported).toBe(r.samplesExpected);
+    // At the example's rate, 1 kHz (at least 500 Hz over the Uno's UART): the board's samples
+    // (received and lost) over the span of the stamps received.
+    const times = r.capture.timeColumn();
+    const span_s = (times[r.firstSample + r.samplesReceived - 1] - times[r.firstSample]) / 1e6;
+    expect((r.samplesExpected - 1) / span_s).toBeGreaterThan(990);
+    expect((r.samplesExpected - 1) / span_s).toBeLessThan(1010);
     const during = gaps.filter((g) => g.kind === 'lost' && g.index > r.firstSample && g.index < r.firstSample + r.samplesReceived);
     expect(during.length).toBeGreaterThan(5);
     expect(during.reduce((n, g) => n + g.samples, 0)).toBe(r.samplesLostReported);

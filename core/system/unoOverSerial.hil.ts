@@ -230,16 +230,45 @@ describe('the Stepper example on an emulated Uno, over a pty at 250 000 baud', (
     expect(events.filter((x) => x.e.type === 'error')).toEqual([]);
   });
 
+  it('streams 120 mm at 100 mm/s (8 000 steps/s) in 3 mm segments, and back: no byte lost, every step on plan', async () => {
+    // Short segments make bursts of frames (the streamer fills the Uno's 10-segment queue)
+    // while the board steps at 8 kHz; loop() empties the UART's 64-byte ring every pass.
+    // (This run also passes with the earlier one-frame-per-pass loop(): the byte loss once
+    // seen at 100 mm/s is not reproduced by it; firmware/README.md, HIL.)
+    const from = board.edges.length;
+    const nacksBefore = badCrcNacks;
+    for (let x = 33; x <= 150; x += 3) void maxl.addSegmentToQueue({ endPosition: [x] });
+    for (let x = 147; x >= 30; x -= 3) void maxl.addSegmentToQueue({ endPosition: [x] });
+    let idle = false;
+    void maxl.whenIdle().then(() => (idle = true));
+    const start = board.scheduler.now();
+    while (!idle && board.scheduler.now() < start + 10_000_000) await board.runUntil(board.scheduler.now() + 50_000);
+    expect(idle).toBe(true);
+    const edges = board.edges.slice(from);
+    expect(edges.length).toBe(2 * 120 * STEPS_PER_MM);
+    expect(positions(edges, 30 * STEPS_PER_MM).at(-1)).toBeCloseTo(30, 9);
+    const check = checkAgainstPlan(edges, 30 * STEPS_PER_MM);
+    figures.longMoveSteps = edges.length;
+    figures.longMoveBadCrcNacks = badCrcNacks - nacksBefore;
+    figures.longMoveStepLateMedian_us = Math.round(check.medianLate_us);
+    figures.longMoveStepLateMaxAbs_us = Math.round(check.maxAbsLate_us);
+    console.log(
+      `HIL 120 mm at 100 mm/s in 3 mm segments and back: ${edges.length} steps, ${badCrcNacks - nacksBefore} BAD_CRC nacks, lateness median ${check.medianLate_us.toFixed(0)} µs, worst ${check.maxAbsLate_us.toFixed(0)} µs`,
+    );
+    expect(badCrcNacks - nacksBefore).toBe(0);
+    expect(check.worstExcess, check.worstEdge).toBeLessThanOrEqual(0);
+    expect(events.filter((x) => x.e.type === 'error')).toEqual([]);
+  });
+
   it('brakes to rest on the path when the link is cut (the pty closed) mid-move', async () => {
     const from = board.edges.length;
-    // 40 mm/s (3.2 kHz of steps): at 100 mm/s the Uno loses bytes of a long
-    // stream (see the README's HIL section), and this test is about the cut.
-    void maxl.addSegmentToQueue({ endPosition: [150], maxVelocity: 40 }).catch(() => undefined);
+    // At 100 mm/s (8 kHz of steps), streamed.
+    void maxl.addSegmentToQueue({ endPosition: [150] }).catch(() => undefined);
     const start = board.scheduler.now();
     await board.runUntil(start + 600_000); // cruising by then
     const cutAt = board.scheduler.now();
     const planAtCut = maxl.sample(cutAt);
-    expect(planAtCut.velocity[0]).toBeGreaterThan(35);
+    expect(planAtCut.velocity[0]).toBeGreaterThan(90);
     expect(events.filter((x) => x.e.type === 'error')).toEqual([]);
     await link.close?.();
     await board.runUntil(cutAt + 1_000_000);

@@ -39,8 +39,8 @@ inline bool benchQueueTrapezoid(maxl_fw::Motion& motion, float length, float vc,
   for (uint8_t i = 0; i < slots; i++)
     if (!slotCoefficients((float)delta[i], s.nu0, peak, s.alpha, s.b0[i], s.cmag[i])) return false;
   s.start = start;
-  motion.queue().markTimed(1);
   motion.setStopDecel(a);
+  motion.markTimed(1);
   return true;
 }
 

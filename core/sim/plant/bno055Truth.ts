@@ -33,9 +33,11 @@ export function stampTruth(chip: Bno055, times: ArrayLike<number>, channels: Rea
   const taken = chip.samplesTaken;
   const range = chip.range_g * STANDARD_GRAVITY;
   const lsb = (v: number) => Math.round(Math.max(-range, Math.min(range, v)) * 100) * 10;
-  // The chip's first sample that could be the first captured: a few periods before its stamp.
+  // The chip's first sample that could be the first captured: 20 ms before its stamp (the
+  // search below looks 50 recorded samples on: one is recorded per read, so 20 ms hold
+  // 2 of them at 100 Hz and 20 at 1 kHz).
   let j = 0;
-  if (from < to) while (j < taken.length && taken[j].t_us < times[from] - 50_000) j++;
+  if (from < to) while (j < taken.length && taken[j].t_us < times[from] - 20_000) j++;
   let matched = 0;
   let unmatched = 0;
   let firstFound = -1;

@@ -7,7 +7,7 @@
  * Firmware: firmware/examples/Stepper (device "motorOne", reader "stepper",
  * STEP D2, DIR D5, 80 steps/mm) and firmware/examples/Accelerometer (device
  * "accelerometer", sensor reader "accel" with 3 channels, mm/s², a sample
- * every 10 ms; BNO055 at 0x28 in ACCONLY mode).
+ * every 1 ms; BNO055 at 0x28 in ACCONLY mode).
  *
  * The sensor reader is not in the config's subscriptions: MaxlConfig
  * subscribes readers to tracks, and a sensor reader reads no track. How the

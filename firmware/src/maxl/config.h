@@ -156,6 +156,30 @@
 #define MAXL_STEPPER_POLLING 1
 #endif
 
+// Work spread ahead of the evaluation (motion.h): in an ordinary evaluation,
+// the next segment's tracks at the end of its first phase (prepareNext()), so
+// that the evaluation in which one segment ends and the next one's short first
+// phase ends too does not also do that phase's multiplies; and, when timing is
+// marked (markTimed()), the float work of the last timed segment's end (at rest
+// there, or starved?). 0 leaves both out (~900 bytes of flash, 20 bytes of RAM
+// on an Uno): the evaluation at a short first phase then costs up to ~1 860
+// cycles instead of ~1 240 (the spiral of npm run bench -- firmware, two
+// slots), and the one in which the timing runs out ~3 100.
+// Sketches whose steppers all step from the step timer do not need it: there an
+// evaluation's length does not move any step.
+#ifndef MAXL_EVAL_PREPARE
+#define MAXL_EVAL_PREPARE 1
+#endif
+
+// A transmit buffer of its own (FRAME_BUFFER_SIZE more bytes of RAM). With 0
+// (the default) one buffer serves both directions, so a report (SAMPLES,
+// STATUS, a paced PONG) waits while a frame is being received; a sensor writer
+// whose batch is full then refuses the next sample. A sketch that samples fast
+// (the Accelerometer example, 1 kHz) sets it to 1: its reports never wait.
+#ifndef MAXL_TX_BUFFER
+#define MAXL_TX_BUFFER 0
+#endif
+
 // HALT mode 1, "brake along the path from time `at`" (protocol §4, §6). 0
 // leaves it out: mode 1 is then answered MALFORMED like an unknown mode. The
 // TypeScript author never sends it (it pauses and cancels by planning to rest,

@@ -14,8 +14,14 @@ MAXL_Device* MAXL_Device::instance_ = 0;
 MAXL_Device::MAXL_Device(const char* name)
     : name_(name),
       frameBuffer_(),
+#if MAXL_TX_BUFFER
+      txBuffer_(),
+      rx_(frameBuffer_),
+      tx_(txBuffer_),
+#else
       rx_(frameBuffer_),
       tx_(frameBuffer_),
+#endif
       now_(0),
       clockSkew_(0),
       lastStatusAt_(0),
@@ -102,7 +108,7 @@ void MAXL_Device::loop() {
     if (r->subscribed()) r->onTick(*this);
   fireEvents();
   if (motion_.takeStarved()) flags_ |= status_flag::STARVED;
-  if (pongPending_ && timeDiff(now_, pongDueAt_) >= 0 && !rx_.inFrame() && txLength_ == 0) sendPong(true);
+  if (pongPending_ && timeDiff(now_, pongDueAt_) >= 0 && !receivingIntoTxBuffer() && txLength_ == 0) sendPong(true);
   reportStatus();
 }
 
@@ -134,7 +140,7 @@ void MAXL_Device::fireEvents() {
 // STATUS on every state change, and every MAXL_STATUS_PERIOD_US while not
 // idle. The transmit buffer is also the receive buffer (device.h): while a
 // frame is arriving the STATUS waits, and goes out once it is complete
-// (pollLink() stops after each frame, so there is a moment between frames).
+// (pollLink() stops after a frame while one waits, so there is a moment between frames).
 void MAXL_Device::reportStatus() {
   if (!session_.active()) return;
   uint8_t s = motion_.statusState();
@@ -144,7 +150,7 @@ void MAXL_Device::reportStatus() {
   } else if (s != state::IDLE && timeDiff(now_, lastStatusAt_) >= (int32_t)MAXL_STATUS_PERIOD_US) {
     statusPending_ = true;
   }
-  if (statusPending_ && !rx_.inFrame() && txLength_ == 0) sendStatus();
+  if (statusPending_ && !receivingIntoTxBuffer() && txLength_ == 0) sendStatus();
 }
 
 uint32_t MAXL_Device::wakeAfter() const {

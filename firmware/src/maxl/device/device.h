@@ -137,8 +137,14 @@ class MAXL_Device {
 
   const char* name_;
   // One buffer for both directions: handlers read their packet completely
-  // before they write a reply (see frame_receiver.h).
+  // before they write a reply (see frame_receiver.h). With MAXL_TX_BUFFER,
+  // frames are written in a buffer of their own.
   uint8_t frameBuffer_[maxl_fw::FRAME_BUFFER_SIZE];
+#if MAXL_TX_BUFFER
+  uint8_t txBuffer_[maxl_fw::FRAME_BUFFER_SIZE];
+#endif
+  // Whether a frame being received holds the buffer reports are written in.
+  bool receivingIntoTxBuffer() const { return !MAXL_TX_BUFFER && rx_.inFrame(); }
   maxl_fw::FrameReceiver rx_;
   maxl_fw::FrameWriter tx_;
   maxl_fw::Session session_;

@@ -175,11 +175,11 @@ MAXL_Device::Answer MAXL_Device::onTiming(const uint8_t* p, uint8_t n) {
     motion_.timingAdded();
   }
   if (late >= 0) {
-    q.markTimed((uint8_t)(first + late));
+    motion_.markTimed((uint8_t)(first + late));
     flags_ |= status_flag::LATE;
     return nack(nack::LATE_SEGMENT, (uint16_t)(t.firstId + late));
   }
-  q.markTimed((uint8_t)(first + t.count));
+  motion_.markTimed((uint8_t)(first + t.count));
   return ack();
 }
 

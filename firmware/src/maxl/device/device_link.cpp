@@ -3,34 +3,39 @@
 #include "maxl/device/device.h"
 
 #include "maxl/readers/reader.h"
+#include "maxl/time/wrap.h"
 #include "maxl/wire/messages.h"
 
 using namespace maxl_fw;
 
 namespace {
-// Bytes taken from the link per loop(): enough to keep up with any baud rate
-// at a few kHz of loop calls, few enough to keep one loop() short.
-const uint8_t BYTES_PER_LOOP = 32;
+// Most bytes taken from the link in one loop(). More than Arduino's 64-byte
+// receive ring holds, so that one pass empties it even while bytes keep coming
+// (25 a ms at 250 000 baud); bounded, so that a link that never pauses cannot
+// hold loop() (and everything else it runs) for ever.
+const uint8_t BYTES_PER_LOOP = 96;
 }  // namespace
 
-// Reads link bytes until a frame ends (or none are left, or BYTES_PER_LOOP),
-// so that loop() gets a moment between frames to send its own (see
-// reportStatus()).
+// Reads what the link holds (up to BYTES_PER_LOOP) and handles every frame
+// that ends in it. Taking one frame per loop() lost bytes: a loop() longer than
+// the ring's 2.6 ms (steps being planned) while short frames stream in let the
+// ring overflow. It stops after a frame only while something waits for the
+// frame buffer, which is also the transmit buffer (device.h): a STATUS due, or
+// a PONG due, so that loop() sends it between two frames.
 void MAXL_Device::pollLink() {
   for (uint8_t i = 0; i < BYTES_PER_LOOP; i++) {
     int16_t b = hal::readByte();
     if (b < 0) return;
-    flushTransmit();  // the byte will land in the buffer a paced frame is in
+    if (!MAXL_TX_BUFFER) flushTransmit();  // the byte will land in the buffer a paced frame is in
     // PONG.rxTime is the clock when the delimiter was read.
     FrameReceiver::Result r = rx_.push((uint8_t)b, b == 0 ? clockNow() : 0);
-    if (r == FrameReceiver::PACKET) {
+    if (r == FrameReceiver::PACKET)
       onPacket();
-      return;
-    }
-    if (r == FrameReceiver::ERROR) {
+    else if (r == FrameReceiver::ERROR)
       onFrameError(rx_.error());
-      return;
-    }
+    else
+      continue;
+    if (statusPending_ || (pongPending_ && timeDiff(clockNow(), pongDueAt_) >= 0)) return;
   }
 }
 
@@ -174,7 +179,7 @@ void MAXL_Device::sendStatus() {
 
 bool MAXL_Device::sendSamples(uint8_t reader, uint16_t sampleSeq, uint8_t count, uint32_t t0, const uint8_t* bytes,
                               uint8_t length) {
-  if (rx_.inFrame()) return false;  // the buffer holds a frame being received
+  if (receivingIntoTxBuffer()) return false;  // the buffer holds a frame being received
   ByteWriter& w = beginFrame(type::SAMPLES);
   msg::writeSamplesHeader(w, reader, sampleSeq, count, t0);
   for (uint8_t i = 0; i < length; i++) w.u8(bytes[i]);

@@ -1,6 +1,8 @@
 #include "maxl/motion/motion.h"
 
 #include <math.h>
+#include <stddef.h>
+#include <string.h>
 
 #include "maxl/motion/profile.h"
 #include "maxl/time/wrap.h"
@@ -19,33 +21,18 @@ inline int32_t wrapAdd(int32_t a, int32_t b) { return (int32_t)((uint32_t)a + (u
 inline float deltaOf(int32_t p0, int32_t p1) { return (float)((int64_t)p1 - (int64_t)p0); }
 }  // namespace
 
+// Every member after the queue starts at zero (IDLE, false, 0, 0.0f: IEEE
+// zero is all zero bytes), so one fill clears them, ~60 bytes of AVR code
+// where a store per member took ~400; the epoch alone goes on (changed()), so a
+// lookahead from before the reset is stale. motion.h keeps mode_ the first of
+// them, after the queue.
 __attribute__((noinline)) void Motion::reset() {
-  changed();
+  static_assert(offsetof(Motion, mode_) >= offsetof(Motion, queue_) + sizeof(SegmentQueue),
+                "reset() clears from mode_ to the end: the queue must come before it");
+  uint8_t epoch = epoch_;
   queue_.clear(0);
-  mode_ = IDLE;
-  activeSlots_ = 0;
-  knownSlots_ = 0;
-  phase_ = 0;
-  headStarted_ = false;
-  starved_ = false;
-  haltPending_ = false;
-  timingGiven_ = false;
-  floatValid_ = false;
-  brakeStops_ = false;
-  haltSegment_ = 0;
-  lastId_ = 0;
-  lastSigma_ = 0.0f;
-  haltAt_ = 0;
-  chunkStart_ = phaseStart_ = phaseEnd_ = 0;
-  stopDecel_ = 0.0f;
-  length_ = 0.0f;
-  phaseSigma_ = phaseNu_ = phaseAcc_ = 0.0f;
-  brakeEndSigma_ = brakeExitSpeed_ = 0.0f;
-  for (uint8_t i = 0; i < MAXL_POSITION_SLOTS; i++) {
-    track_[i].P = track_[i].B = track_[i].C = 0;
-    pos_[i] = 0;
-    base_[i] = 0;
-  }
+  memset(&mode_, 0, sizeof(Motion) - offsetof(Motion, mode_));
+  epoch_ = (uint8_t)(epoch + 1);
 }
 
 uint8_t Motion::statusState() const {
@@ -89,7 +76,7 @@ void Motion::advance(uint32_t now) {
         }
         uint32_t start = queue_.head().start;
         if (timeBefore(now, start)) return;
-        activate(start);
+        enter(start, 0, base_, queue_.head().b0);
         break;
       }
       case RUNNING:
@@ -107,7 +94,7 @@ void Motion::advance(uint32_t now) {
           evaluate(now);
           return;
         }
-        crossPhase(phaseEnd_);
+        crossPhase(phaseEnd_, now);
         break;
       case BRAKING:
         if (timeBefore(now, phaseEnd_)) {
@@ -143,16 +130,13 @@ __attribute__((noinline)) uint32_t Motion::nextChunks(uint32_t x) {
 }
 
 // Moves every slot's chunk start to t (>= chunkStart_), keeping position and
-// velocity continuous.
+// velocity continuous: whole 2^16 µs first (nextChunks, rare), then the rest.
 void Motion::moveChunkTo(uint32_t t) {
   uint32_t x = t - chunkStart_;
-  while (x >= 65536UL) {
-    for (uint8_t i = 0; i < activeSlots_; i++) track_[i].nextChunk();
-    chunkStart_ += 65536UL;
-    x -= 65536UL;
-  }
+  if (x >> 16) x = nextChunks(x);
   if (x) {
-    for (uint8_t i = 0; i < activeSlots_; i++) track_[i].advance((uint16_t)x);
+    FixedTrack* track = track_;
+    for (uint8_t n = activeSlots_; n; n--) (track++)->advance((uint16_t)x);
     chunkStart_ = t;
   }
 }
@@ -172,28 +156,75 @@ __attribute__((noinline)) void Motion::moveTrackTo(FixedTrack& track, uint32_t& 
   }
 }
 
-void Motion::activate(uint32_t t) {
+// Starts phase k of the head at t with each slot's P and B (phase 0 at the
+// segment's start: base_, the previous p1, and b0); C = ±cmag or 0 as the
+// phase is.
+void Motion::enter(uint32_t t, uint8_t k, const int32_t* P, const int32_t* B) {
   const Segment& s = queue_.head();
-  int8_t sign = s.phaseSign(0);
-  for (uint8_t i = 0; i < activeSlots_; i++) {
-    track_[i].P = base_[i];
-    track_[i].B = s.b0[i];
-    track_[i].C = signedCoefficient(sign, s.cmag[i]);
+  int8_t sign = s.phaseSign(k);
+  FixedTrack* track = track_;
+  const int32_t* cmag = s.cmag;
+  for (uint8_t n = activeSlots_; n; n--, track++) {
+    track->P = *P++;
+    track->B = *B++;
+    track->C = signedCoefficient(sign, *cmag++);
   }
-  phase_ = 0;
+  forgetNext();  // prepare for the segment after this one
+  phase_ = k;
   chunkStart_ = phaseStart_ = t;
-  phaseEnd_ = t + s.durations[0];
+  phaseEnd_ = t + s.durations[k];
   length_ = s.length;
   floatValid_ = false;
   headStarted_ = true;
   mode_ = RUNNING;
 }
 
-void Motion::crossPhase(uint32_t t) {
+#if MAXL_EVAL_PREPARE
+// In an ordinary tick of the head (tick()), for the timed segment after it with
+// more than one phase and a phase 0 shorter than 2^16 µs: every slot's position
+// and velocity (P and B) at the end of that phase 0, as enter() and crossPhase() would compute them
+// there (the same FixedTrack operations from the same P, B and C), so the same
+// numbers. finishSegment() uses them (enter(…, 1, nextP_, nextB_)) when that phase is
+// over by the time the head ends; markTimed(), changed() and dropFrom() ask again.
+__attribute__((noinline)) void Motion::prepareNext() {
+  nextChecked_ = true;
+  if (queue_.timed() < 2) return;
+  const Segment& n = queue_.at(1);
+  if (n.phaseCount < 2 || (n.durations[0] >> 16)) return;
+  const Segment& h = queue_.head();
+  uint16_t d0 = (uint16_t)n.durations[0];
+  int8_t sign = n.phaseSign(0);
+  for (uint8_t i = 0; i < activeSlots_; i++) {
+    FixedTrack k;  // as enter(start, 0, …): P = base_ = the head's p1, B = b0, C = ±cmag
+    k.P = h.p1[i];
+    k.B = n.b0[i];
+    k.C = signedCoefficient(sign, n.cmag[i]);
+    k.advance(d0);
+    nextP_[i] = k.P;
+    nextB_[i] = k.B;
+  }
+  nextLow_ = (uint8_t)(queue_.headId() + 1);
+  nextReady_ = true;
+}
+#endif
+
+// Into the next phase at t (≤ now), or to the segment's end.
+void Motion::crossPhase(uint32_t t, uint32_t now) {
   const Segment& s = queue_.head();
-  if (phase_ + 1 >= s.phaseCount) {
-    finishSegment(t);
+  uint8_t next = (uint8_t)(phase_ + 1);
+  if (next >= s.phaseCount) {
+    finishSegment(t, now);
     return;
+  }
+  if (next + 1 == s.phaseCount && !haltPending()) {
+    // Into the last phase: if it is over by `now` too (a last phase of a few
+    // µs), the segment ends exactly at its p1 whatever the phase does, so go
+    // straight there without moving the tracks through it.
+    uint32_t end = t + s.durations[next];
+    if (!timeBefore(now, end)) {
+      finishSegment(end, now);
+      return;
+    }
   }
   moveChunkTo(t);
   phase_++;
@@ -204,21 +235,51 @@ void Motion::crossPhase(uint32_t t) {
   floatValid_ = false;
 }
 
-// The head's timing is over at t: it ends exactly at its p1.
-void Motion::finishSegment(uint32_t t) {
+// The head's timing is over at t (≤ now): it ends exactly at its p1.
+void Motion::finishSegment(uint32_t t, uint32_t now) {
+  (void)now;  // used by MAXL_EVAL_PREPARE
   const Segment& s = queue_.head();
-  for (uint8_t i = 0; i < activeSlots_; i++) pos_[i] = base_[i] = s.p1[i];
+  {
+    int32_t* pos = pos_;
+    int32_t* base = base_;
+    const int32_t* p1 = s.p1;
+    for (uint8_t n = activeSlots_; n; n--) *pos++ = *base++ = *p1++;
+  }
   bool moreTiming = queue_.timed() > 1;
-  float exitSpeed = moreTiming ? 0.0f : s.length * exitNu(s);
   lastId_ = queue_.headId();
   lastSigma_ = 1.0f;
-  queue_.popHead();
-  headStarted_ = false;
   if (moreTiming) {
-    mode_ = WAITING;  // tick() starts the next one at its start (usually t)
+    queue_.popHead();
+    headStarted_ = false;
+    // A streamed path is contiguous: the next one usually starts right here,
+    // and starts now (what tick()'s next pass would do from WAITING).
+    const Segment& next = queue_.head();
+    if (next.start != t)
+      mode_ = WAITING;
+#if MAXL_EVAL_PREPARE
+    else if (nextReady_ && nextLow_ == (uint8_t)queue_.headId() && !timeBefore(now, t + next.durations[0]))
+      // Its phase 0 is over too: straight into phase 1 with what prepareNext()
+      // worked out, the numbers crossPhase() would compute, without the multiplies.
+      enter(t + next.durations[0], 1, nextP_, nextB_);
+#endif
+    else
+      enter(t, 0, base_, next.b0);
     return;
   }
-  if (atRest(exitSpeed, stopDecel_)) {
+  // The last timed segment: at rest at its end, or starved. With
+  // MAXL_EVAL_PREPARE markTimed() has usually answered that already (the same
+  // floats, so the same answer).
+#if MAXL_EVAL_PREPARE
+  bool known = endKnown_ && endId_ == lastId_;
+  bool knownAtRest = endAtRest_;
+#else
+  const bool known = false, knownAtRest = false;
+#endif
+  float exitSpeed = known && knownAtRest ? 0.0f : exitSpeedOf(s);
+  bool rest = known ? knownAtRest : atRest(exitSpeed, stopDecel_);
+  queue_.popHead();
+  headStarted_ = false;
+  if (rest) {
     mode_ = IDLE;
     return;
   }
@@ -230,6 +291,23 @@ void Motion::finishSegment(uint32_t t) {
   else
     stopHere(lastId_, 1.0f);
 }
+
+void Motion::markTimed(uint8_t n) {
+  queue_.markTimed(n);
+#if MAXL_EVAL_PREPARE
+  if (!nextReady_) nextChecked_ = false;  // the head's successor may have timing now
+  endKnown_ = n > 0;
+  if (!endKnown_) return;
+  endId_ = (uint16_t)(queue_.headId() + n - 1);
+  endAtRest_ = endsAtRest(queue_.at((uint8_t)(n - 1)));
+#endif
+}
+
+// L·σ'(T): the speed at the end of s, mm/s.
+__attribute__((noinline)) float Motion::exitSpeedOf(const Segment& s) { return s.length * exitNu(s); }
+
+// Whether the timing running out at the end of s leaves the device at rest.
+bool Motion::endsAtRest(const Segment& s) const { return atRest(exitSpeedOf(s), stopDecel_); }
 
 // Starts braking at time t along the head segment, from `speed` mm/s at σ =
 // sigma0, with positions `from` (which may be base_ or pos_).
@@ -364,18 +442,20 @@ bool Motion::lookSpan(Lookahead& a, uint8_t slot, uint32_t from, uint32_t& until
     if (a.state == Lookahead::REST) {
       until = s.start;
       if (timeBefore(from, until)) return true;
-      // it starts: as Motion::activate(), then phase 0 below
+      // it starts: as Motion::enter(start, 0, …), then phase 0 below
       a.track.P = startOf((uint8_t)i, slot);
       a.track.B = s.b0[slot];
       a.chunkStart = a.pieceEnd = s.start;
       a.phase = 0xFF;
       a.state = Lookahead::RUN;
     } else {
+#if MAXL_HALT_BRAKE
       if (haltPending() && haltSegment_ == a.segment && timeBefore(haltAt_, a.pieceEnd)) {
         // Motion brakes at haltAt_: what follows is Motion's to decide.
         until = haltAt_;
         return timeBefore(from, until);
       }
+#endif
       until = a.pieceEnd;
       if (timeBefore(from, until)) return true;
       if (a.phase + 1 >= s.phaseCount) {  // the segment ends: rest at its p1 until the next starts
@@ -449,7 +529,7 @@ bool Motion::haltBrakeAt(uint32_t now, uint32_t at) {
   // (start <= at < end) brakes from there, the rest become provisional.
   uint8_t keep = 0;
   while (keep < queue_.timed() && !timeBefore(at, queue_.at(keep).start)) keep++;
-  queue_.markTimed(keep);
+  markTimed(keep);
   haltPending_ = false;
   if (keep > 0) {
     const Segment& s = queue_.at((uint8_t)(keep - 1));
@@ -465,7 +545,10 @@ bool Motion::haltBrakeAt(uint32_t now, uint32_t at) {
 
 void Motion::dropFrom(uint8_t index) {
   queue_.truncate(index);
+  forgetNext();  // the segment after the head may be another one now
+#if MAXL_HALT_BRAKE
   if (haltPending() && (uint16_t)(haltSegment_ - queue_.headId()) >= index) haltPending_ = false;
+#endif
 }
 
 // ------------------------------------------------------------------ floats on demand

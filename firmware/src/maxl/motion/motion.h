@@ -58,6 +58,9 @@ class Motion {
   inline __attribute__((always_inline)) void tick(uint32_t now) {
     if (mode_ == RUNNING && !haltPending() && (int32_t)(now - phaseEnd_) < 0) {
       evaluate(now);
+#if MAXL_EVAL_PREPARE
+      if (!nextChecked_) prepareNext();  // once per segment, in an ordinary tick
+#endif
       return;
     }
     advance(now);
@@ -97,7 +100,20 @@ class Motion {
   bool timingGiven() const { return timingGiven_; }
 
   float stopDecel() const { return stopDecel_; }
-  void setStopDecel(float d) { stopDecel_ = d; }
+  // Set it before markTimed(): a new deceleration drops what markTimed() prepared.
+  void setStopDecel(float d) {
+    stopDecel_ = d;
+#if MAXL_EVAL_PREPARE
+    endKnown_ = false;
+#endif
+  }
+  // The first n queued segments have timing (queue().markTimed(n)). With
+  // MAXL_EVAL_PREPARE the float work of the last one's end is done now, outside
+  // the evaluation: whether the timing runs out at rest there (L·σ'(T) against
+  // stopDecel), so finishing a segment inside tick() stays integer work unless
+  // it has to brake (without it, that evaluation does it). Anything that gives
+  // timing calls this, not the queue's markTimed().
+  void markTimed(uint8_t n);
   // Called when the queue's timed prefix grew (the handler marked it).
   void timingAdded() { timingGiven_ = true; }
 
@@ -117,7 +133,11 @@ class Motion {
   uint8_t epoch() const { return epoch_; }
   // HALT mode 1 still ahead: the path is certain only until haltAt().
   bool haltPending() const { return MAXL_HALT_BRAKE && haltPending_; }
+#if MAXL_HALT_BRAKE
   uint32_t haltAt() const { return haltAt_; }
+#else
+  uint32_t haltAt() const { return 0; }
+#endif
   // Starts `a` where Motion is now (last tick) and returns the slot's position there.
   int32_t lookFrom(Lookahead& a, uint8_t slot) const;
   // How far `a` can go from `from` in one piece: sets `until` to the end of
@@ -141,9 +161,12 @@ class Motion {
   }
 
  private:
-  void activate(uint32_t t);
-  void crossPhase(uint32_t t);
-  void finishSegment(uint32_t t);
+  void enter(uint32_t t, uint8_t k, const int32_t* P, const int32_t* B);
+  static float exitSpeedOf(const Segment& s);
+  bool endsAtRest(const Segment& s) const;
+  void prepareNext();
+  void crossPhase(uint32_t t, uint32_t now);
+  void finishSegment(uint32_t t, uint32_t now);
   void beginBrake(uint32_t t, float speed, float sigma0, const int32_t* from);
   void finishBrakePiece(uint32_t t);
 #if MAXL_HALT_BRAKE
@@ -155,10 +178,21 @@ class Motion {
   void evaluate(uint32_t now);
   uint32_t nextChunks(uint32_t x);
   void refreshFloatPhase();
-  void changed() { epoch_++; }
+  void changed() {
+    epoch_++;
+    forgetNext();
+  }
+  // What prepareNext() worked out is for another successor now (or none).
+  void forgetNext() {
+#if MAXL_EVAL_PREPARE
+    nextReady_ = nextChecked_ = false;
+#endif
+  }
   static void moveTrackTo(FixedTrack& track, uint32_t& chunkStart, uint32_t t);
   int32_t restPosition(uint16_t segmentId, uint8_t slot) const;
 
+  // reset() sets every member from mode_ on to zero (one fill): keep the
+  // queue first, mode_ next, and zero a valid start for whatever is added.
   SegmentQueue queue_;
   Mode mode_;
   uint8_t activeSlots_;
@@ -170,11 +204,30 @@ class Motion {
   bool timingGiven_ : 1;   // see timingGiven()
   bool floatValid_ : 1;    // phaseSigma_/phaseNu_ are those of the current phase
   bool brakeStops_ : 1;
+#if MAXL_EVAL_PREPARE
+  bool endKnown_ : 1;      // endId_ ends at rest or not: endAtRest_ (markTimed(), MAXL_EVAL_PREPARE)
+  bool endAtRest_ : 1;
+  // Work spread ahead (prepareNext()): the tracks of the segment after the
+  // head at the end of its phase 0, worked out in an ordinary tick, so that the
+  // tick in which one segment ends, the next starts and that one's short first
+  // phase ends too (phases of a few µs, from rounding, are common) does not do
+  // that phase's multiplies as well (finishSegment()). MAXL_EVAL_PREPARE (config.h).
+  bool nextChecked_ : 1;   // prepareNext() has run for the head's successor
+  bool nextReady_ : 1;     // nextP_ and nextB_ hold them
+  uint8_t nextLow_;        // low byte of the id of the segment they are for
+  int32_t nextP_[MAXL_POSITION_SLOTS];  // each slot's P and B there
+  int32_t nextB_[MAXL_POSITION_SLOTS];
+#endif
   uint8_t epoch_;
-  uint16_t haltSegment_;
+#if MAXL_EVAL_PREPARE
+  uint16_t endId_;         // the last timed segment when markTimed() ran
+#endif
   uint16_t lastId_;        // where the device is when not moving
   float lastSigma_;
+#if MAXL_HALT_BRAKE
+  uint16_t haltSegment_;
   uint32_t haltAt_;
+#endif
   uint32_t chunkStart_;
   uint32_t phaseStart_;
   uint32_t phaseEnd_;

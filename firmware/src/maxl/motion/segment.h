@@ -32,7 +32,7 @@ struct Segment {
   uint32_t end() const { return start + duration(); }
   // +1 accelerate, 0 cruise, -1 decelerate
   int8_t phaseSign(uint8_t k) const {
-    uint8_t kind = (uint8_t)((shape >> (2 * k)) & 3);
+    uint8_t kind = (uint8_t)((k == 0 ? shape : k == 1 ? shape >> 2 : shape >> 4) & 3);  // k < 3
     return kind == 1 ? 1 : kind == 3 ? -1 : 0;
   }
 };

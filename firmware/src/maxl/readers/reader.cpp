@@ -10,11 +10,13 @@ MAXL_Reader::MAXL_Reader(const char* name, uint8_t kind, uint8_t channels)
   *link = this;
 }
 
+#if !defined(__AVR__)
 MAXL_Reader::~MAXL_Reader() {
   MAXL_Reader** link = &head_;
   while (*link && *link != this) link = &(*link)->next_;
   if (*link) *link = next_;
 }
+#endif
 
 uint8_t MAXL_Reader::index() const {
   uint8_t i = 0;

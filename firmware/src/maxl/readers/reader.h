@@ -27,8 +27,13 @@ class MAXL_Reader {
 
  protected:
   MAXL_Reader(const char* name, uint8_t kind, uint8_t channels);
-  // Unlinks (readers that live on a test's stack); sketches never destroy them.
+#if !defined(__AVR__)
+  // Unlinks (readers that live on a test's stack). A sketch's readers are
+  // static and live as long as the board runs, so on AVR there is none: with
+  // it, every static reader's destruction would be compiled in, for an exit()
+  // that never comes (~130-180 bytes of flash).
   ~MAXL_Reader();
+#endif
 
   // Called by the device:
   virtual void onBegin() {}             // once, from MAXL_Device::begin()
