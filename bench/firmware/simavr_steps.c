@@ -31,7 +31,13 @@
  * Debugging: BENCH_DEBUG=1 prints segment starts, loops over 150 µs and every
  * late step; BENCH_PROFILE=FILE samples the program counter during the move
  * (bench/firmware/profile_symbols.py), only inside loops longer than N cycles
- * with BENCH_PROFILE_STALLS=N (1 600 if N is not given).
+ * with BENCH_PROFILE_STALLS=N (1 600 if N is not given), only between
+ * BENCH_PROFILE_FROM_US and BENCH_PROFILE_TO_US of device time if given.
+ * BENCH_CALLS=ADDR,ADDR,... (byte addresses in hex, up to 16; see
+ * bench/firmware/call_cycles.py, which takes function names) counts the calls
+ * of those functions in the same span and the cycles each takes, callees
+ * included and interrupts excluded (an interrupt vector's own cycles for a
+ * vector), printed as "calls ADDR n cycles c" lines on stderr.
  *
  *   simavr_steps FILE.elf RATE_HZ [ACCEL_MM_S2 [CRUISE_MS]]
  */
@@ -44,6 +50,7 @@
 #include <simavr/avr_ioport.h>
 #include <simavr/avr_uart.h>
 #include <simavr/sim_avr.h>
+#include <simavr/sim_core.h>
 #include <simavr/sim_elf.h>
 #include <simavr/sim_irq.h>
 
@@ -302,6 +309,24 @@ int main(int argc, char **argv) {
   const char *profilePath = getenv("BENCH_PROFILE");
   static uint32_t pcCount[16384];
   uint64_t nextSample = 0;
+  /* BENCH_PROFILE_FROM_US / BENCH_PROFILE_TO_US: only samples in that span of device time */
+  const double profileFrom = getenv("BENCH_PROFILE_FROM_US") ? atof(getenv("BENCH_PROFILE_FROM_US")) : 0.0;
+  const double profileTo = getenv("BENCH_PROFILE_TO_US") ? atof(getenv("BENCH_PROFILE_TO_US")) : 1e300;
+  /* BENCH_CALLS: a function is entered when the PC is at its address, and
+   * left when the PC reaches the return address then on top of the stack with
+   * the stack above where it was (an epilogue's two-byte SP writes make the SP
+   * jump for an instruction: it alone does not tell a return). An interrupt
+   * is entered when the PC is in the vector table and left likewise (the
+   * vectors here do not nest); its cycles are taken out of every function it
+   * interrupted. */
+  int callFns = 0, callActive[16] = {0}, inIsr = 0;
+  uint32_t callAddr[16], callRet[16], isrRet = 0;
+  uint16_t callSp[16], isrSp = 0;
+  uint64_t callStart[16], callIsrAtStart[16], callCycles[16] = {0}, callCount[16] = {0}, isrStart = 0, isrCycles = 0;
+  if (getenv("BENCH_CALLS")) {
+    char *list = strdup(getenv("BENCH_CALLS"));
+    for (char *t = strtok(list, ","); t && callFns < 16; t = strtok(0, ",")) callAddr[callFns++] = (uint32_t)strtoul(t, 0, 16);
+  }
   /* feed bytes at the line rate, then run to the end of the move */
   uint64_t nextByte = avr->cycle;
   int sent = 0;
@@ -314,9 +339,28 @@ int main(int argc, char **argv) {
     if (stopCycle && avr->cycle >= stopCycle) break;
     /* loop periods while the move runs (cruise and ramps) */
     measureLoops = sent == txLen && deviceMicros(avr->cycle) >= seg[0].start && deviceMicros(avr->cycle) < end;
-    if (profilePath && measureLoops && avr->cycle >= nextSample && (!getenv("BENCH_PROFILE_STALLS") || avr->cycle - lastLoop > (uint64_t)(atoi(getenv("BENCH_PROFILE_STALLS")) > 1 ? atoi(getenv("BENCH_PROFILE_STALLS")) : 1600))) { pcCount[(avr->pc >> 1) & 16383]++; nextSample = avr->cycle + 97; }
+    if (callFns && deviceMicros(avr->cycle) >= profileFrom && deviceMicros(avr->cycle) < profileTo) {
+      uint16_t sp = _avr_sp_get(avr);
+      /* the return address on top of the stack (pushed high byte first, in words) */
+      uint32_t top = 2u * (((uint32_t)avr->data[sp + 1] << 8) | avr->data[sp + 2]);
+      if (!inIsr && avr->pc < 0x68) { inIsr = 1; isrSp = sp; isrRet = top; isrStart = avr->cycle; }
+      else if (inIsr && sp > isrSp && avr->pc == isrRet) { inIsr = 0; isrCycles += avr->cycle - isrStart; }
+      for (int f = 0; f < callFns; f++) {
+        if (!callActive[f] && avr->pc == callAddr[f]) {
+          callActive[f] = 1 + inIsr;  /* 2: a vector's own code, nothing to take out */
+          callSp[f] = sp; callRet[f] = top; callStart[f] = avr->cycle; callIsrAtStart[f] = isrCycles; callCount[f]++;
+        } else if (callActive[f] && sp > callSp[f] && avr->pc == callRet[f]) {
+          uint64_t c = avr->cycle - callStart[f];
+          if (callActive[f] == 1) c -= isrCycles - callIsrAtStart[f];
+          callCycles[f] += c;
+          callActive[f] = 0;
+        }
+      }
+    }
+    if (profilePath && measureLoops && avr->cycle >= nextSample && deviceMicros(avr->cycle) >= profileFrom && deviceMicros(avr->cycle) < profileTo && (!getenv("BENCH_PROFILE_STALLS") || avr->cycle - lastLoop > (uint64_t)(atoi(getenv("BENCH_PROFILE_STALLS")) > 1 ? atoi(getenv("BENCH_PROFILE_STALLS")) : 1600))) { pcCount[(avr->pc >> 1) & 16383]++; nextSample = avr->cycle + 97; }
   }
 
+  for (int f = 0; f < callFns; f++) fprintf(stderr, "calls %x %llu cycles %llu\n", callAddr[f], (unsigned long long)callCount[f], (unsigned long long)callCycles[f]);
   if (profilePath) { FILE *f = fopen(profilePath, "w"); for (int i = 0; i < 16384; i++) if (pcCount[i]) fprintf(f, "%d %u\n", i * 2, pcCount[i]); fclose(f); }
   /* answers: every frame must be acked */
   int acks = 0, nacks = 0, statuses = 0;
