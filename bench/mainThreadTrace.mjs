@@ -5,7 +5,7 @@
  * ('toplevel' ThreadControllerImpl::RunTask on the renderer's CrRendererMain thread;
  * a nested task is shorter than the one around it, so the longest is a top one).
  */
-export const startTrace = (browser, page) => browser.startTracing(page, { categories: ['toplevel', '__metadata', 'gpu'] });
+export const startTrace = (browser, page, categories = ['toplevel', '__metadata', 'gpu']) => browser.startTracing(page, { categories });
 
 /** Stops the trace and reads the main thread's tasks from it. */
 export async function stopTrace(browser) {
