@@ -51,6 +51,7 @@
 import { chromium } from '@playwright/test';
 import { spawn } from 'node:child_process';
 import { setTimeout as delay } from 'node:timers/promises';
+import { startTrace as startTraceOf, stopTrace as stopTraceOf } from './mainThreadTrace.mjs';
 
 const args = process.argv.slice(2);
 const seconds = Number(args[args.indexOf('--seconds') + 1]) > 0 && args.includes('--seconds') ? Number(args[args.indexOf('--seconds') + 1]) : 20;
@@ -126,39 +127,8 @@ await page.evaluate(() => {
   };
   requestAnimationFrame(frame);
 });
-/**
- * The page's main-thread tasks from a Chromium trace: every task of any length
- * ('toplevel' ThreadControllerImpl::RunTask on the renderer's CrRendererMain thread;
- * a nested task is shorter than the one around it, so the longest is a top one).
- */
-const startTrace = () => browser.startTracing(page, { categories: ['toplevel', '__metadata', 'gpu'] });
-async function stopTrace() {
-  const trace = JSON.parse((await browser.stopTracing()).toString());
-  const events = trace.traceEvents ?? trace;
-  const main = new Set(events.filter((e) => e.name === 'thread_name' && e.args?.name === 'CrRendererMain').map((e) => `${e.pid}/${e.tid}`));
-  // Top-level tasks only (one inside another, in a nested run loop, is part of it), in time order per thread.
-  const all = events.filter((e) => e.ph === 'X' && e.name === 'ThreadControllerImpl::RunTask' && main.has(`${e.pid}/${e.tid}`)).sort((x, y) => x.ts - y.ts);
-  const ends = new Map();
-  const tasks = [];
-  for (const e of all) {
-    const thread = `${e.pid}/${e.tid}`;
-    if (e.ts < (ends.get(thread) ?? -Infinity)) continue;
-    ends.set(thread, e.ts + e.dur);
-    tasks.push({ wall: e.dur / 1000, cpu: (e.tdur ?? NaN) / 1000 });
-  }
-  if (tasks.length === 0) throw new Error('the trace holds no main-thread task: is the trace category right for this chromium?');
-  const readbacks = events.filter((e) => e.ph === 'X' && e.name === 'GLES2::ReadPixels' && main.has(`${e.pid}/${e.tid}`)).map((e) => e.dur / 1000);
-  return {
-    readbacks: readbacks.length,
-    longestReadback: readbacks.length ? Math.max(...readbacks) : 0,
-    longest: Math.max(...tasks.map((t) => t.wall)),
-    // A task the trace gives no thread time (rare: one cut by the trace's start) is left out of these two.
-    longestCpu: Math.max(...tasks.map((t) => t.cpu).filter(Number.isFinite)),
-    cpuTotal: tasks.reduce((sum, t) => sum + (Number.isFinite(t.cpu) ? t.cpu : 0), 0),
-    over50: tasks.filter((t) => t.wall > 50).length,
-    tasks: tasks.length,
-  };
-}
+const startTrace = () => startTraceOf(browser, page);
+const stopTrace = () => stopTraceOf(browser);
 const resetInstruments = () =>
   page.evaluate(() => {
     Object.assign(window.__bench, { loafs: [], frames: 0, maxGap: 0, last: 0, measuring: true, t0: performance.now() });

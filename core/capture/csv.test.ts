@@ -6,7 +6,7 @@ import { csvParseRows } from 'd3-dsv';
 import { describe, expect, it } from 'vitest';
 import { ClockMap } from '../net/clockMap.ts';
 import { restingSample } from '../trajectory/tracks.ts';
-import { captureCsvColumns, captureToCsv } from './csv.ts';
+import { captureCsvChunks, captureCsvColumns, captureToCsv } from './csv.ts';
 import { formatSafeCsv, safeCell } from './csvSafe.ts';
 import { SensorCapture } from './sensorCapture.ts';
 import { queueOf } from '../maxl.ts';
@@ -90,6 +90,24 @@ describe('capture CSV', () => {
     expect(safeCell(null)).toBeNull();
     // Quoting of separators, quotes and line breaks stays d3-dsv's.
     expect(formatSafeCsv(['a,b', 'c"d', '=e\nf'], [[-1, 'x'], [null, '@y']])).toBe('"a,b","c""d","\'=e\nf"\n-1,x\n,\'@y');
+  });
+
+  it('in chunks: the header, then rows a chunk at a time, joined exactly the whole text, whatever the chunk size', () => {
+    const capture = captureWithGap('=reader');
+    const options = { sample: (t: number, k: number) => (k === 2 ? null : plan(t)), motionAxes: ['x'] };
+    const whole = captureToCsv(capture, options);
+    const lines = whole.split('\n');
+    expect(lines).toHaveLength(11);
+    for (const size of [1, 3, 10, 250]) {
+      const chunks = [...captureCsvChunks(capture, options, size)];
+      expect(chunks).toHaveLength(1 + Math.ceil(10 / size));
+      expect(chunks[0]).toBe(lines[0]);
+      expect(chunks.join('')).toBe(whole);
+      for (const c of chunks.slice(1)) expect(c.startsWith('\n')).toBe(true);
+      // Each row in one piece: the chunk's lines are the whole text's lines in order.
+      expect(chunks.slice(1).flatMap((c) => c.slice(1).split('\n'))).toEqual(lines.slice(1));
+    }
+    expect(() => [...captureCsvChunks(capture, options, 0)]).toThrow(/at least 1/);
   });
 
   it('refuses a channel name list of the wrong length', () => {

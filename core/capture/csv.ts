@@ -18,7 +18,7 @@
  * row says how many went missing.
  */
 import type { TrajectorySample } from '../trajectory/tracks.ts';
-import { formatSafeCsv, type CsvCell } from './csvSafe.ts';
+import { formatSafeCsvLines, type CsvCell } from './csvSafe.ts';
 import type { SampleGap } from './sampleGaps.ts';
 
 /** A capture's columns (a SensorCapture, or a saved copy of one). */
@@ -67,7 +67,16 @@ function channelNamesOf(capture: Pick<CaptureColumns, 'reader' | 'channels'>, na
   return names ? [...names] : Array.from({ length: capture.channels }, (_, c) => `${capture.reader}${c}`);
 }
 
-export function captureToCsv(capture: CaptureColumns, options: CsvOptions): string {
+/** Rows per chunk of captureCsvChunks by default: a few milliseconds of work each. */
+export const CSV_ROWS_PER_CHUNK = 250;
+
+/**
+ * The CSV in pieces, to write a long capture (600 000 rows) without holding the page:
+ * the header line, then `rowsPerChunk` rows at a time, each piece after the first
+ * beginning with its line break. Joined, they are exactly captureToCsv's text.
+ */
+export function* captureCsvChunks(capture: CaptureColumns, options: CsvOptions, rowsPerChunk = CSV_ROWS_PER_CHUNK): Generator<string, void, void> {
+  if (!(rowsPerChunk >= 1)) throw new RangeError(`rows per chunk must be at least 1 (got ${rowsPerChunk})`);
   const times = capture.timeColumn();
   const device = capture.deviceTimeColumn();
   const batch = capture.batchColumn();
@@ -76,15 +85,22 @@ export function captureToCsv(capture: CaptureColumns, options: CsvOptions): stri
   const channels = Array.from({ length: capture.channels }, (_, c) => capture.channel(c));
   const lostBefore = new Map(capture.gaps.filter((g) => g.kind === 'lost').map((g) => [g.index, g.samples]));
   const t0 = times.length > 0 ? times[0] : 0;
-  const rows: CsvCell[][] = [];
-  for (let k = 0; k < times.length; k++) {
-    const t = times[k];
-    const plan = options.sample(t, k);
-    const row: CsvCell[] = [(t - t0) / 1e6, t, device[k], batch[k], index[k], seq[k], lostBefore.get(k) ?? 0];
-    for (const values of channels) row.push(values[k]);
-    for (let i = 0; i < options.motionAxes.length; i++) row.push(plan?.position[i], plan?.velocity[i], plan?.acceleration[i]);
-    row.push(plan?.speed, plan?.pathAcceleration);
-    rows.push(row);
+  yield formatSafeCsvLines([captureCsvColumns(capture, options)]);
+  for (let from = 0; from < times.length; from += rowsPerChunk) {
+    const rows: CsvCell[][] = [];
+    for (let k = from; k < Math.min(times.length, from + rowsPerChunk); k++) {
+      const t = times[k];
+      const plan = options.sample(t, k);
+      const row: CsvCell[] = [(t - t0) / 1e6, t, device[k], batch[k], index[k], seq[k], lostBefore.get(k) ?? 0];
+      for (const values of channels) row.push(values[k]);
+      for (let i = 0; i < options.motionAxes.length; i++) row.push(plan?.position[i], plan?.velocity[i], plan?.acceleration[i]);
+      row.push(plan?.speed, plan?.pathAcceleration);
+      rows.push(row);
+    }
+    yield `\n${formatSafeCsvLines(rows)}`;
   }
-  return formatSafeCsv(captureCsvColumns(capture, options), rows);
+}
+
+export function captureToCsv(capture: CaptureColumns, options: CsvOptions): string {
+  return [...captureCsvChunks(capture, options)].join('');
 }

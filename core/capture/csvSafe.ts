@@ -31,11 +31,15 @@ export function safeCell(value: CsvCell): string | number | null {
   return `'${value}`;
 }
 
-/** CSV text (RFC 4180 quoting by d3-dsv) of a header row and data rows, every cell made safe. */
-export function formatSafeCsv(header: readonly string[], rows: ReadonlyArray<readonly CsvCell[]>): string {
-  const safe = (row: readonly CsvCell[]) => row.map((v) => {
+/** CSV lines (RFC 4180 quoting by d3-dsv, joined by "\n", no line break after the last), every cell made safe. */
+export function formatSafeCsvLines(rows: ReadonlyArray<readonly CsvCell[]>): string {
+  return csvFormatRows(rows.map((row) => row.map((v) => {
     const cell = safeCell(v);
     return cell === null ? '' : String(cell);
-  });
-  return csvFormatRows([safe(header), ...rows.map(safe)]);
+  })));
+}
+
+/** CSV text (RFC 4180 quoting by d3-dsv) of a header row and data rows, every cell made safe. */
+export function formatSafeCsv(header: readonly string[], rows: ReadonlyArray<readonly CsvCell[]>): string {
+  return formatSafeCsvLines([header, ...rows]);
 }

@@ -9,8 +9,17 @@
  *
  * and the lag is the k that maximises ρ, refined by a parabola through ρ(k−1), ρ(k),
  * ρ(k+1): δ = ½(ρ₋ − ρ₊)/(ρ₋ − 2ρ₀ + ρ₊), lag = (k + δ)·T. A positive lag means the
- * measurement comes after the plan. Direct sums over |k| ≤ maxLag/T: a few hundred
- * shifts of a few thousand points, cheaper than an FFT for so few shifts, and exact.
+ * measurement comes after the plan. Direct sums over |k| ≤ maxLag/T: exact, and for a
+ * few hundred shifts as cheap as an FFT.
+ *
+ * One pass per shift: with the overlap's count c and sums Sp, Sm, Spp, Smm, Spm,
+ *
+ *   Σ p̃m̃ = Spm − Sp·Sm/c,   Σ p̃² = Spp − Sp²/c,   Σ m̃² = Smm − Sm²/c
+ *
+ * (expand Σ(p − Sp/c)(m − Sm/c)). Those differences lose digits when the means are
+ * large beside the swings, so both series are first centred on their own means over
+ * the valid points: the overlap's means are then small, and the sums exact to ~1e-12.
+ * (A 10-minute capture at 1 kHz: 201 shifts × 600 000 points, about a second.)
  *
  * The lag between planned and measured acceleration includes the plant's own dynamics
  * (a belt spring delays and rings), so it is information for the user, not a clock
@@ -37,33 +46,48 @@ export function crossCorrelationLag(
 ): LagEstimate | null {
   const n = Math.min(planned.length, measured.length);
   const maxShift = Math.min(n - 2, Math.max(1, Math.round(maxLag_s / period_s)));
-  const ok = (i: number) => valid === undefined || valid[i];
+  // Validity as bytes, and both series centred on their means over the valid points.
+  const ok = new Uint8Array(n);
+  let meanP = 0;
+  let meanM = 0;
+  let valids = 0;
+  for (let i = 0; i < n; i++) {
+    ok[i] = valid === undefined || valid[i] ? 1 : 0;
+    if (ok[i]) {
+      meanP += planned[i];
+      meanM += measured[i];
+      valids++;
+    }
+  }
+  meanP = valids > 0 ? meanP / valids : 0;
+  meanM = valids > 0 ? meanM / valids : 0;
+  const p = Float64Array.from({ length: n }, (_, i) => planned[i] - meanP);
+  const m = Float64Array.from({ length: n }, (_, i) => measured[i] - meanM);
   const rho = (k: number): number => {
-    // Means over the overlap, then the normalised sum.
+    let count = 0;
     let sp = 0;
     let sm = 0;
-    let count = 0;
-    for (let i = Math.max(0, -k); i < n && i + k < n; i++) {
-      if (!ok(i) || !ok(i + k)) continue;
-      sp += planned[i];
-      sm += measured[i + k];
-      count++;
-    }
-    if (count < 3) return NaN;
-    const mp = sp / count;
-    const mm = sm / count;
-    let spm = 0;
     let spp = 0;
     let smm = 0;
-    for (let i = Math.max(0, -k); i < n && i + k < n; i++) {
-      if (!ok(i) || !ok(i + k)) continue;
-      const p = planned[i] - mp;
-      const m = measured[i + k] - mm;
-      spm += p * m;
-      spp += p * p;
-      smm += m * m;
+    let spm = 0;
+    const end = Math.min(n, n - k);
+    for (let i = Math.max(0, -k); i < end; i++) {
+      if (ok[i] === 0 || ok[i + k] === 0) continue;
+      const a = p[i];
+      const b = m[i + k];
+      count++;
+      sp += a;
+      sm += b;
+      spp += a * a;
+      smm += b * b;
+      spm += a * b;
     }
-    return spp > 0 && smm > 0 ? spm / Math.sqrt(spp * smm) : NaN;
+    if (count < 3) return NaN;
+    const cov = spm - (sp * sm) / count;
+    const varP = spp - (sp * sp) / count;
+    const varM = smm - (sm * sm) / count;
+    // A flat overlap (no variance beyond rounding) has no correlation.
+    return varP > 1e-12 * spp && varM > 1e-12 * smm ? cov / Math.sqrt(varP * varM) : NaN;
   };
   const values = new Map<number, number>();
   let best = NaN;

@@ -11,34 +11,27 @@
  * A SAMPLES batch gives t0 (device µs) and each sample's dt from the one before;
  * device times are unwrapped against the author's clock model, so a capture can
  * cross the 71.6-minute wrap of a u32 µs counter.
+ *
+ * The columns grow by chunks (chunkedColumn.ts): a sample added never copies the
+ * others. Reading a column whole makes one copy, kept until the next batch.
  */
 import type { ClockMap } from '../net/clockMap.ts';
 import type { MessageOf } from '../net/messages.ts';
 import { SampleGapDetector, type SampleGap } from './sampleGaps.ts';
+import { ChunkedColumn } from './chunkedColumn.ts';
 
 export type { SampleGap } from './sampleGaps.ts';
-
-/** Float64 columns that grow by doubling. */
-class Column {
-  data = new Float64Array(1024);
-  ensure(n: number): void {
-    if (n <= this.data.length) return;
-    const grown = new Float64Array(Math.max(n, this.data.length * 2));
-    grown.set(this.data);
-    this.data = grown;
-  }
-}
 
 export class SensorCapture {
   readonly device: string;
   readonly reader: string;
   readonly channels: number;
-  private readonly times = new Column();
-  private readonly deviceTimes = new Column();
-  private readonly batches = new Column();
-  private readonly indices = new Column();
-  private readonly sequence = new Column();
-  private readonly values: Column[];
+  private readonly times = new ChunkedColumn();
+  private readonly deviceTimes = new ChunkedColumn();
+  private readonly batches = new ChunkedColumn();
+  private readonly indices = new ChunkedColumn();
+  private readonly sequence = new ChunkedColumn();
+  private readonly values: ChunkedColumn[];
   private count = 0;
   private samplesBefore = 0;
   private readonly detector = new SampleGapDetector();
@@ -49,7 +42,7 @@ export class SensorCapture {
     this.device = device;
     this.reader = reader;
     this.channels = channels;
-    this.values = Array.from({ length: channels }, () => new Column());
+    this.values = Array.from({ length: channels }, () => new ChunkedColumn());
   }
 
   get size(): number {
@@ -95,45 +88,49 @@ export class SensorCapture {
   }
 
   private push(t: number, device: number, batch: number, index: number, values: readonly number[]): void {
-    const n = this.count + 1;
-    for (const c of [this.times, this.deviceTimes, this.batches, this.indices, this.sequence, ...this.values]) c.ensure(n);
-    const k = this.count;
-    this.times.data[k] = t;
-    this.deviceTimes.data[k] = device;
-    this.batches.data[k] = batch;
-    this.indices.data[k] = index;
-    this.sequence.data[k] = this.samplesBefore++;
-    for (let c = 0; c < this.channels; c++) this.values[c].data[k] = values[c];
-    this.count = n;
+    this.times.push(t);
+    this.deviceTimes.push(device);
+    this.batches.push(batch);
+    this.indices.push(index);
+    this.sequence.push(this.samplesBefore++);
+    for (let c = 0; c < this.channels; c++) this.values[c].push(values[c]);
+    this.count++;
   }
 
-  /** Author µs of each sample (a view, valid until the next add). */
+  /** Author µs of each sample (one copy, the same array until the next add). */
   timeColumn(): Float64Array {
-    return this.times.data.subarray(0, this.count);
+    return this.times.toArray();
   }
 
   /** The device's u32 µs stamp of each sample. */
   deviceTimeColumn(): Float64Array {
-    return this.deviceTimes.data.subarray(0, this.count);
+    return this.deviceTimes.toArray();
   }
 
   /** The batch number of each sample (the wire's u16, unwrapped). */
   batchColumn(): Float64Array {
-    return this.batches.data.subarray(0, this.count);
+    return this.batches.toArray();
   }
 
   /** Each sample's index in its batch. */
   indexColumn(): Float64Array {
-    return this.indices.data.subarray(0, this.count);
+    return this.indices.toArray();
   }
 
   /** Each sample's number: samples the device took before it, lost ones included. */
   sequenceColumn(): Float64Array {
-    return this.sequence.data.subarray(0, this.count);
+    return this.sequence.toArray();
   }
 
-  /** One channel's values (a view, valid until the next add). */
+  /** One channel's values (one copy, the same array until the next add). */
   channel(c: number): Float64Array {
-    return this.values[c].data.subarray(0, this.count);
+    return this.values[c].toArray();
+  }
+
+  /** Samples [from, to) of one column into a new array: no copy of the rest. */
+  slice(column: 'time' | 'deviceTime' | 'batch' | 'index' | 'sequence' | number, from: number, to: number): Float64Array {
+    const source = typeof column === 'number' ? this.values[column] : { time: this.times, deviceTime: this.deviceTimes, batch: this.batches, index: this.indices, sequence: this.sequence }[column];
+    if (!source) throw new RangeError(`the capture has no column ${column} (it has ${this.channels} channels)`);
+    return source.copyInto(new Float64Array(Math.max(0, to - from)), from, to);
   }
 }

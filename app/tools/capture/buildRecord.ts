@@ -103,14 +103,17 @@ function truthOf(sensors: SensorTrace[], truth: RecordInput['truth'] | null): Si
   };
 }
 
-function traceOf(maxl: Maxl, capture: SensorCapture, first: number, end_us: number, horizon: number): SensorTrace {
-  const times = capture.timeColumn();
-  let last = times.length;
-  while (last > first && times[last - 1] > end_us) last--;
-  const n = Math.max(0, last - first);
-  const slice = (a: ArrayLike<number>) => Float64Array.from({ length: n }, (_, k) => a[first + k]);
+function traceOf(maxl: Maxl, capture: SensorCapture, firstIndex: number, end_us: number, horizon: number): SensorTrace {
+  const first = Math.min(firstIndex, capture.size);
+  // Only the samples from the motion's start are copied (the capture holds every sample
+  // since the machine started), and only up to the window's end.
+  const after = capture.slice('time', first, capture.size);
+  let n = after.length;
+  while (n > 0 && after[n - 1] > end_us) n--;
+  const last = first + n;
+  const slice = (column: Parameters<SensorCapture['slice']>[0]) => capture.slice(column, first, last);
   const axes = maxl.config.motionAxes;
-  const author_us = slice(times);
+  const author_us = after.slice(0, n);
   const planned = {
     position: axes.map(() => new Float64Array(n)),
     velocity: axes.map(() => new Float64Array(n)),
@@ -135,11 +138,11 @@ function traceOf(maxl: Maxl, capture: SensorCapture, first: number, end_us: numb
     reader: capture.reader,
     channelNames: channelNames(capture),
     author_us,
-    device_us: slice(capture.deviceTimeColumn()),
-    batch: slice(capture.batchColumn()),
-    index: slice(capture.indexColumn()),
-    seq: slice(capture.sequenceColumn()),
-    values: Array.from({ length: capture.channels }, (_, c) => slice(capture.channel(c))),
+    device_us: slice('deviceTime'),
+    batch: slice('batch'),
+    index: slice('index'),
+    seq: slice('sequence'),
+    values: Array.from({ length: capture.channels }, (_, c) => slice(c)),
     // Gaps with received samples on both sides inside the window, re-indexed to it.
     gaps: capture.gaps.filter((g) => g.index > first && g.index < last).map((g) => ({ ...g, index: g.index - first })),
     planned,

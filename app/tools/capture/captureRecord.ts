@@ -4,7 +4,7 @@
  * (machine config, firmware versions, clock-sync error, the gaps, the analysis, and
  * the as-planned segments the planned columns were read from).
  */
-import { captureToCsv, type CaptureColumns } from '../../../core/capture/csv.ts';
+import { captureCsvChunks, CSV_ROWS_PER_CHUNK, type CaptureColumns } from '../../../core/capture/csv.ts';
 import type { TrajectorySample } from '../../../core/index.ts';
 import type { CaptureRecord, SensorTrace } from './protocol.ts';
 
@@ -39,10 +39,15 @@ export function plannedAt(trace: SensorTrace, k: number): TrajectorySample | nul
   };
 }
 
-export function recordCsv(record: CaptureRecord, sensor = 0): string {
+/** A saved capture's CSV in pieces (core/capture/csv.ts captureCsvChunks): the header, then `rowsPerChunk` rows each. */
+export function recordCsvChunks(record: CaptureRecord, sensor = 0, rowsPerChunk = CSV_ROWS_PER_CHUNK): Generator<string, void, void> {
   const trace = record.sensors[sensor];
   if (!trace) throw new RangeError(`the capture has no sensor ${sensor} (it has ${record.sensors.length})`);
-  return captureToCsv(traceColumns(trace), { sample: (_t, k) => plannedAt(trace, k), motionAxes: record.axes, channelNames: trace.channelNames });
+  return captureCsvChunks(traceColumns(trace), { sample: (_t, k) => plannedAt(trace, k), motionAxes: record.axes, channelNames: trace.channelNames }, rowsPerChunk);
+}
+
+export function recordCsv(record: CaptureRecord, sensor = 0): string {
+  return [...recordCsvChunks(record, sensor)].join('');
 }
 
 /** The sidecar: everything about the capture but its rows. */

@@ -3,7 +3,7 @@
  * (IndexedDB), which one is shown and which is overlaid to compare, and the commands.
  */
 import type { WorkbenchStore } from '../../lib/workbench.svelte.ts';
-import { deleteCapture, loadCaptures, saveCapture } from './captureDb.ts';
+import { deleteCapture, loadCaptures } from './captureDb.ts';
 import type { CaptureProgress, CaptureRecord, TestMotion } from './protocol.ts';
 
 export class CaptureStore {
@@ -22,7 +22,7 @@ export class CaptureStore {
       } else if (e.type === 'capture-done') {
         this.running = false;
         this.progress = null;
-        void this.keep(e.record);
+        this.show(e.record, e.notKept);
       } else if (e.type === 'capture-failed') {
         this.running = false;
         this.progress = null;
@@ -58,15 +58,11 @@ export class CaptureStore {
     await this.reload();
   }
 
-  private async keep(record: CaptureRecord): Promise<void> {
-    // Shown at once; kept for later if the browser lets us.
+  /** Shows a finished capture at once (the worker kept it in IndexedDB, or says why not). */
+  private show(record: CaptureRecord, notKept: string | null): void {
     this.captures = [record, ...this.captures.filter((c) => c.id !== record.id)];
     this.selectedId = record.id;
-    try {
-      await saveCapture(record);
-    } catch (err) {
-      this.error = `The capture is shown but could not be kept: ${err instanceof Error ? err.message : String(err)}`;
-    }
+    if (notKept) this.error = `The capture is shown but could not be kept: ${notKept}`;
   }
 
   private async reload(): Promise<void> {

@@ -53,6 +53,9 @@ describe('capture tool (worker)', () => {
     const r = done!;
     expect(captureEvents(posted).some((e) => e.type === 'capture-progress')).toBe(true);
     expect(r.cutShort).toBeNull();
+    // The worker keeps the record before sending it; node has no IndexedDB, and the event says so.
+    const doneEvent = captureEvents(posted).find((e) => e.type === 'capture-done');
+    expect(doneEvent?.type === 'capture-done' && doneEvent.notKept).toBe('there is no IndexedDB here');
     expect(r.sensors).toHaveLength(1);
     expect(r.sensors[0].device).toBe('accelerometer');
     expect(r.sensors[0].author_us.length).toBeGreaterThan(500);

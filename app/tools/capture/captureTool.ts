@@ -2,7 +2,8 @@
  * The capture tool in the worker: runs a test motion (core/capture/testMotions.ts) on
  * the author while the runtime captures every sensor the machine has (it subscribes
  * every sensor reader at begin() and fills maxl.captures), then sends the page a
- * self-contained record (buildRecord.ts).
+ * self-contained record (buildRecord.ts), kept in IndexedDB from here (captureDb.ts) so the
+ * page never clones a long capture on its own thread.
  *
  * It claims the machine for the motion, says how far it is every 200 ms, and stops on
  * Cancel (the author brakes on the path) or STOP (every device halts): either way the
@@ -15,7 +16,8 @@ import { limitsAlong, planTestMotion, TestMotionError, type PlannedMotion, type 
 import type { ToolContext, WorkbenchTool } from '../../worker/toolContext.ts';
 import type { SpringParameters } from '../../../core/sim/plant/springResponse.ts';
 import { buildRecord, type RecordInput } from './buildRecord.ts';
-import { recordTransferables, type CaptureCommand, type CaptureEvent } from './protocol.ts';
+import { recordTransferables, type CaptureCommand, type CaptureEvent, type CaptureRecord } from './protocol.ts';
+import { saveCapture } from './captureDb.ts';
 
 const OWNER = 'capture';
 /** Ringing recorded after the motion ends, µs. */
@@ -165,7 +167,21 @@ export class CaptureTool implements WorkbenchTool<CaptureCommand> {
       'CAPTURE',
       `Capture ${run.cutShort ? `cut short (${run.cutShort})` : 'done'}: ${samples} samples${lost > 0 ? `, ${lost} lost (shown as gaps)` : ''}${peak}.`,
     );
-    this.post({ tool: 'capture', type: 'capture-done', record }, recordTransferables(record));
+    void this.keepAndSend(record);
+  }
+
+  /** Keeps the record in IndexedDB (here, off the page's thread), then sends it, its arrays transferred. */
+  private async keepAndSend(record: CaptureRecord): Promise<void> {
+    let notKept: string | null = null;
+    if (typeof indexedDB === 'undefined') notKept = 'there is no IndexedDB here';
+    else {
+      try {
+        await saveCapture(record);
+      } catch (err) {
+        notKept = err instanceof Error ? err.message : String(err);
+      }
+    }
+    this.post({ tool: 'capture', type: 'capture-done', record, notKept }, recordTransferables(record));
   }
 
   /** The simulated machine's accelerometer and belt, for the record's ground truth (null on real boards). */

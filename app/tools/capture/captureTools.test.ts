@@ -99,12 +99,19 @@ function record(): CaptureRecord {
 }
 
 describe('plot curves', () => {
-  it('break at a gap (a NaN point), and the cursor finds the nearest real sample', () => {
-    const points = measuredCurve(record(), 0, 0);
-    expect(points.map((p) => p.v)).toEqual([-1, -2, -3, NaN, -4, -5, -6]);
-    expect(points[3].t).toBeCloseTo(0.05, 12);
-    expect(points[nearest(points, 0.049)].v).toBe(-4);
-    expect(points[nearest(points, 0.0)].v).toBe(-1);
+  it('break at a gap (listed, never a joined line), and the cursor finds the nearest sample with a value', () => {
+    const curve = measuredCurve(record(), 0, 0);
+    expect(Array.from(curve.v)).toEqual([-1, -2, -3, -4, -5, -6]);
+    expect(Array.from(curve.breaks)).toEqual([3]);
+    expect(curve.t[3]).toBeCloseTo(0.05, 12);
+    expect(curve.v[nearest(curve, 0.049)]).toBe(-4);
+    expect(curve.v[nearest(curve, 0.0)]).toBe(-1);
+    expect(curve.v[nearest(curve, 1)]).toBe(-6);
+    // Unknown values are skipped: the nearest known one either side.
+    const planned = { t: Float64Array.from([0, 1, 2, 3]), v: Float64Array.from([5, NaN, NaN, 7]), breaks: new Int32Array(0) };
+    expect(nearest(planned, 1.2)).toBe(0);
+    expect(nearest(planned, 1.9)).toBe(3);
+    expect(nearest({ t: new Float64Array(0), v: new Float64Array(0), breaks: new Int32Array(0) }, 1)).toBe(-1);
   });
 
   it('decimation keeps every bucket’s peak', () => {

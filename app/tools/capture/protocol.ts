@@ -28,7 +28,12 @@ export interface CaptureProgress {
 
 export type CaptureEvent =
   | { tool: 'capture'; type: 'capture-progress'; progress: CaptureProgress }
-  | { tool: 'capture'; type: 'capture-done'; record: CaptureRecord }
+  /**
+   * The record, kept in IndexedDB by the worker before it is sent (a 10-minute capture is
+   * tens of MB: cloning it into the store would hold the page); `notKept` says why it
+   * could not be kept, null when it was.
+   */
+  | { tool: 'capture'; type: 'capture-done'; record: CaptureRecord; notKept: string | null }
   | { tool: 'capture'; type: 'capture-failed'; message: string };
 
 /** One sensor reader's samples over the capture, with the plan at each sample. */
