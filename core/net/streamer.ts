@@ -345,7 +345,10 @@ export class Streamer {
       if (!next || next === this.holdAt) break;
       const ahead = this.countAhead(now);
       if (this.queue.transmittedEnd_us >= horizon + refill && ahead >= 2) break;
-      const start = this.queue.nextStart_us(now + this.startLead_us);
+      // A start after rest counts from the clock as it reads now, not at the pump's
+      // start: the planning above (timeFront, a split) is not taken out of its lead.
+      const earliestStart = this.scheduler.now() + this.startLead_us;
+      const start = this.queue.nextStart_us(earliestStart);
       // Lock long segments a slice at a time. When the two-segment minimum asks for a
       // segment that starts at or past the horizon and is longer than a lead (a held
       // jog), lock one slice of it, not all of it; shorter ones are locked whole.
@@ -373,7 +376,7 @@ export class Streamer {
         this.conflict(next);
         break;
       }
-      const seg = this.queue.transmitNext(now + this.startLead_us) as Segment;
+      const seg = this.queue.transmitNext(earliestStart) as Segment;
       // `sent` is the timed segments, then the first untransmitted ones: keep it so.
       if (this.sent.length === this.timed) this.sent.push(seg);
       this.timed++;
