@@ -517,9 +517,15 @@ export class Runtime {
     if (state === 'braking' && !this.halted && !this.streamStopped) {
       this.emit({
         type: 'error',
-        error: new MaxlError('LINK_LOST', `${session.label} ran out of timing and is braking along the path: the stream fell behind`),
+        error: new MaxlError('LINK_LOST', `${session.label} ran out of timing and is braking along the path: the stream fell behind${this.runOutReason()}`),
       });
     }
+  }
+
+  /** Why the stream may have fallen behind, as the streamer saw it (" (…)"), or nothing. */
+  private runOutReason(): string {
+    const why = this.streamer?.runOutReason();
+    return why ? ` (${why})` : '';
   }
 
   private onSamples(session: DeviceSession, m: MessageOf<'SAMPLES'>, at: number): void {
