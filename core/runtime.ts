@@ -522,10 +522,10 @@ export class Runtime {
     }
   }
 
-  /** Why the stream may have fallen behind, as the streamer saw it (" (…)"), or nothing. */
+  /** Why the stream may have fallen behind, as the streamer saw it (": …"), or nothing. */
   private runOutReason(): string {
     const why = this.streamer?.runOutReason();
-    return why ? ` (${why})` : '';
+    return why ? `: ${why}` : '';
   }
 
   private onSamples(session: DeviceSession, m: MessageOf<'SAMPLES'>, at: number): void {
