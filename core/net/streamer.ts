@@ -418,7 +418,8 @@ export class Streamer {
    * Notes what holds timing back, for runOutReason(): a device whose frame waits
    * for its ack past the stall limit, or a pump that came only after the timed path
    * the one before left had ended, while more was queued to send (the devices had
-   * run out before the author could send it).
+   * run out before the author could send it). A late pump is the reason even if it
+   * also finds acks overdue: they may be waiting, unread, in its own thread's queue.
    */
   private noteHoldBack(now: number, stalled: boolean): void {
     const last = this.lastPump;
@@ -426,6 +427,7 @@ export class Streamer {
       const gap_ms = ((now - last.at_us) / 1000).toFixed(1);
       const ahead_ms = ((last.timedEnd_us - last.at_us) / 1000).toFixed(1);
       this.holdBack = { at_us: now, text: `the author's next pump came ${gap_ms} ms after the one before, when only ${ahead_ms} ms of motion had been sent ahead (its thread was held back)` };
+      return;
     }
     if (!stalled) return;
     const held = this.devices.filter((d) => d.binding.device.isOpen).sort((a, b) => b.binding.device.oldestUnacked_us - a.binding.device.oldestUnacked_us)[0];
