@@ -50,6 +50,13 @@ export interface MaxlOptions {
    * Default true; off, such a job starves its device.
    */
   linkFeedLimit?: boolean;
+  /**
+   * Before begin() resolves, stream a short dry move to devices that encode every
+   * frame and drop it, so that the first real move runs compiled code, not code a
+   * JavaScript engine meets for the first time (net/warmUp.ts). For real boards on the
+   * wall clock; default false (virtual time does not care).
+   */
+  warmUp?: boolean;
 }
 
 /** How long a call may wait, and how to give up waiting. */
@@ -216,6 +223,7 @@ export class Maxl {
       streamer: o.streamer,
       syncBeforeStart_us: o.syncBeforeStart_us,
       linkFeedLimit: o.linkFeedLimit,
+      warmUp: o.warmUp,
     });
     for (const l of this.pendingListeners) this.runtime.on(l);
     return this.runtime.begin();

@@ -28,6 +28,7 @@ import { DeviceState, nameOf, StatusFlag, type DeviceStateName } from './net/pro
 import { DeviceSession, type DeviceInfo, type SessionOptions } from './net/session.ts';
 import { Streamer, type StreamerEvent, type StreamerOptions } from './net/streamer.ts';
 import { feedLimit, type FeedLimit } from './net/linkFeedLimit.ts';
+import { warmStreamingPaths } from './net/warmUp.ts';
 import { WIRE_MIN_SEGMENT_S } from './trajectory/moves.ts';
 import { onPath, pathInOrder, planResume, pointAtTime, pointFromStatus, slotValuesAt, type BoardStop } from './net/recovery.ts';
 import { pointPosition } from './trajectory/restart.ts';
@@ -44,6 +45,8 @@ export interface RuntimeOptions {
    * Off, a job that needs more than a link carries starves its device.
    */
   linkFeedLimit?: boolean;
+  /** Stream a dry move to nowhere before begin() resolves, so the first real segment runs warm code (net/warmUp.ts; default false). */
+  warmUp?: boolean;
 }
 
 /** One device as an app sees it. */
@@ -170,6 +173,7 @@ export class Runtime {
     this.createSessions();
     const infos = await Promise.all(this.sessions.map((s) => s.open()));
     await this.subscribeAndSync(infos);
+    if (this.options.warmUp) await this.warmUp(infos);
     this.streamer = this.createStreamer(infos, new Map());
     this.streamer.start();
     return infos;
@@ -227,6 +231,14 @@ export class Runtime {
     for (const s of this.sessions) s.pingBurst(sync + 1_000_000);
     await this.scheduler.sleep(sync);
     for (const s of this.sessions) this.emit({ type: 'device', device: s.label, state: 'open' });
+  }
+
+  /** A dry run of the streaming path with these devices' slots, sending nothing (net/warmUp.ts). */
+  private async warmUp(infos: DeviceInfo[]): Promise<void> {
+    const devices = this.plans
+      .filter((p) => p.readsTrajectory)
+      .map((p) => ({ name: p.device, positionSlots: p.positionSlots, eventSlots: p.eventSlots, capacity: (infos.find((i) => i.name === p.device) as DeviceInfo).segmentCapacity }));
+    await warmStreamingPaths(this.host.config, devices, this.options.streamer);
   }
 
   /** A streamer for the devices that read the trajectory; `p0` gives a device's slots where they stand, if not at the path's start. */
@@ -526,9 +538,15 @@ export class Runtime {
     if (state === 'braking' && !this.halted && !this.streamStopped) {
       this.emit({
         type: 'error',
-        error: new MaxlError('LINK_LOST', `${session.label} ran out of timing and is braking along the path: the stream fell behind`),
+        error: new MaxlError('LINK_LOST', `${session.label} ran out of timing and is braking along the path: the stream fell behind${this.runOutReason()}`),
       });
     }
+  }
+
+  /** Why the stream may have fallen behind, as the streamer saw it (": …"), or nothing. */
+  private runOutReason(): string {
+    const why = this.streamer?.runOutReason();
+    return why ? `: ${why}` : '';
   }
 
   private onSamples(session: DeviceSession, m: MessageOf<'SAMPLES'>, at: number): void {

@@ -349,7 +349,8 @@ export class Workbench {
     const streamer = this.scheduler instanceof PacedScheduler ? undefined : realBoardStreamer(this.devices.map((d) => ({ bytesPerSecond: d.port.bytesPerSecond, bridged: d.bridged })));
     let maxl: Maxl;
     try {
-      maxl = createMAXL(this.config, { links: this.devices.map((d) => d.port.session()), initialPosition: this.position, scheduler: this.scheduler, streamer, syncBeforeStart_us: SYNC_BEFORE_START_US });
+      // Real boards: a dry move first (core/net/warmUp.ts), so the first jog's pump runs warm code.
+      maxl = createMAXL(this.config, { links: this.devices.map((d) => d.port.session()), initialPosition: this.position, scheduler: this.scheduler, streamer, syncBeforeStart_us: SYNC_BEFORE_START_US, warmUp: streamer !== undefined });
     } catch (err) {
       const words = errorWords(err);
       this.setPhase('not-ready', words.message);

@@ -138,6 +138,10 @@ export class Streamer {
    */
   private readonly wireLog = new Map<number, Segment>();
   private readonly wireOrder: Array<{ seg: Segment; id: number }> = [];
+  /** When the last pump ran, and where the timed path ended after it (author µs). */
+  private lastPump: { at_us: number; timedEnd_us: number; more: boolean } | null = null;
+  /** The latest reason the devices could run out of timing (runOutReason). */
+  private holdBack: { at_us: number; text: string } | null = null;
 
   constructor(
     queue: TrajectoryQueue,
@@ -276,6 +280,16 @@ export class Streamer {
     return this.segmentForWireId(wireId);
   }
 
+  /**
+   * Why devices that ran out of timing about now may have: the latest time timing
+   * was held back, within `within_us` (an ack overdue), or the pump came after the
+   * timed path had ended (the author's thread was held back); null if neither.
+   */
+  runOutReason(within_us = 1_000_000): string | null {
+    const h = this.holdBack;
+    return h && this.scheduler.now() - h.at_us <= within_us ? h.text : null;
+  }
+
   /** Segments whose geometry went out, in the order sent (the last WIRE_LOG). */
   get sentInOrder(): Segment[] {
     return this.wireOrder.map((w) => w.seg);
@@ -346,13 +360,17 @@ export class Streamer {
     // protocol can make separate links agree on those. The boards then stop apart by
     // at most the motion of this stall limit; docs/protocol.md §6.)
     const stalled = this.devices.some((d) => !d.binding.device.isOpen || d.binding.device.oldestUnacked_us > this.stallLimit_us);
+    this.noteHoldBack(now, stalled);
     for (;;) {
       if (stalled) break;
       const next = this.queue.timeFront();
       if (!next || next === this.holdAt) break;
       const ahead = this.countAhead(now);
       if (this.queue.transmittedEnd_us >= horizon + refill && ahead >= 2) break;
-      const start = this.queue.nextStart_us(now + this.startLead_us);
+      // A start after rest counts from the clock as it reads now, not at the pump's
+      // start: the planning above (timeFront, a split) is not taken out of its lead.
+      const earliestStart = this.scheduler.now() + this.startLead_us;
+      const start = this.queue.nextStart_us(earliestStart);
       // Lock long segments a slice at a time. When the two-segment minimum asks for a
       // segment that starts at or past the horizon and is longer than a lead (a held
       // jog), lock one slice of it, not all of it; shorter ones are locked whole.
@@ -380,7 +398,7 @@ export class Streamer {
         this.conflict(next);
         break;
       }
-      const seg = this.queue.transmitNext(now + this.startLead_us) as Segment;
+      const seg = this.queue.transmitNext(earliestStart) as Segment;
       // `sent` is the timed segments, then the first untransmitted ones: keep it so.
       if (this.sent.length === this.timed) this.sent.push(seg);
       this.timed++;
@@ -388,6 +406,8 @@ export class Streamer {
     }
     this.extendGeometry();
     this.send(newlyTimed);
+    const more = this.queue.untransmittedCount > 0 && this.holdAt !== this.queue.peekUntransmitted();
+    this.lastPump = { at_us: now, timedEnd_us: this.queue.transmittedEnd_us, more };
 
     if (this.idle) {
       const waiters = this.idleWaiters;
@@ -399,6 +419,30 @@ export class Streamer {
     if (this.queue.transmittedEnd_us > now || (this.queue.untransmittedCount > 0 && this.holdAt !== this.queue.peekUntransmitted())) {
       this.schedulePump(this.options.tick_us);
     }
+  }
+
+  /**
+   * Notes what holds timing back, for runOutReason(): a device whose frame waits
+   * for its ack past the stall limit, or a pump that came only after the timed path
+   * the one before left had ended, while more was queued to send (the devices had
+   * run out before the author could send it). A late pump is the reason even if it
+   * also finds acks overdue: they may be waiting, unread, in its own thread's queue.
+   */
+  private noteHoldBack(now: number, stalled: boolean): void {
+    const last = this.lastPump;
+    if (last && last.more && last.timedEnd_us > last.at_us && now > last.timedEnd_us) {
+      const gap_ms = ((now - last.at_us) / 1000).toFixed(1);
+      const ahead_ms = ((last.timedEnd_us - last.at_us) / 1000).toFixed(1);
+      this.holdBack = { at_us: now, text: `the author's next pump came ${gap_ms} ms after the one before, when only ${ahead_ms} ms of motion had been sent ahead (its thread was held back)` };
+      return;
+    }
+    if (!stalled) return;
+    const held = this.devices.filter((d) => d.binding.device.isOpen).sort((a, b) => b.binding.device.oldestUnacked_us - a.binding.device.oldestUnacked_us)[0];
+    const closed = this.devices.find((d) => !d.binding.device.isOpen);
+    const text = closed
+      ? `${closed.binding.name}'s link was not open, so no device got more timing`
+      : `${held.binding.name} had not acknowledged a frame for ${(held.binding.device.oldestUnacked_us / 1000).toFixed(1)} ms (more than the ${(this.stallLimit_us / 1000).toFixed(1)} ms a round trip should take), so no device got more timing`;
+    this.holdBack = { at_us: now, text };
   }
 
   /**

@@ -3,21 +3,20 @@
  * wrote (fakePortStreams.ts) go into the board's simulated link at the time they
  * were written, and the bytes the board sends go back over the channel.
  *
- * Why the boards trail the wall clock. The boards' worker shares the browser's
+ * How a chunk reaches its board on time. The boards' worker shares the browser's
  * two cores with the author; when it does not get the CPU for a while, the bytes
- * the author wrote meanwhile wait in its message queue. The boards' simulated
- * time therefore trails the wall clock by BOARD_LAG_US (their PacedScheduler's
- * wall clock is shifted back by that much): a chunk written at wall time w is
- * due at virtual time v(w − lag), and the simulation has not passed it unless the
- * worker was held back for longer than the lag. A constant offset between a
- * board's clock and the author's is what clock sync measures anyway, and the
- * board still answers a PING one link delay after it was sent (the simulation
- * reaches v(w − lag) at wall time w), so the round trips it shows stay those of
- * the link model.
- *
- * A chunk that does arrive after its time (the worker held back longer than the
- * lag) goes in at once, and is counted: `late` and `worstLate_us` say whether the
- * fake, rather than the author, could have made a board late.
+ * the author wrote meanwhile wait in its message queue, while the boards'
+ * simulated time (a PacedScheduler on the wall clock) stands still. A chunk
+ * written at wall time w is due at virtual time v(w). When the worker runs again,
+ * the scheduler's wake first lets the message queue go round once
+ * (`wakeAfterMail`): every chunk that arrived while it was held back goes in at
+ * its own time before the simulation runs past it. Only a chunk that comes while
+ * a wake runs timers, and was written before that wake began, finds its time
+ * passed: it goes in at once and is counted (`late`, `worstLate_us`), so that a
+ * run can tell whether the fake, rather than the author, could have made a board
+ * late. (A fixed lag of the boards' clock behind the wall, which an earlier
+ * version had, changed nothing: the chunks' times and the simulation's moved by
+ * the same amount.)
  */
 import type { PacedScheduler } from '../../core/index.ts';
 import type { Link } from '../../core/net/link.ts';
@@ -30,12 +29,35 @@ import type { ChannelClosed, StampedChunk } from './fakePortStreams.ts';
  */
 const CLOCK_RESOLUTION_US = 200;
 
-/** How far the fake boards' simulated time trails the wall clock, µs. */
-export const BOARD_LAG_US = 250_000;
+/** The worker's clock, µs: the boards' PacedScheduler's wall clock. */
+function wallNow_us(): number {
+  return performance.now() * 1000;
+}
 
-/** The boards' wall clock (µs), shifted back by the lag: give it to their PacedScheduler. */
-export function laggedWallNow(): number {
-  return performance.now() * 1000 - BOARD_LAG_US;
+/**
+ * The boards' PacedScheduler's wake: a timer, then one turn of the worker's
+ * message queue (a message to itself, which queues behind every message already
+ * there), then the wake runs the simulation.
+ */
+export function wakeAfterMail(): (delay_ms: number, callback: () => void) => { cancel(): void } {
+  const turn = new MessageChannel();
+  const waiting: Array<() => void> = [];
+  turn.port1.onmessage = () => waiting.shift()?.();
+  return (delay_ms, callback) => {
+    let cancelled = false;
+    const handle = setTimeout(() => {
+      waiting.push(() => {
+        if (!cancelled) callback();
+      });
+      turn.port2.postMessage(0);
+    }, delay_ms);
+    return {
+      cancel: () => {
+        cancelled = true;
+        clearTimeout(handle);
+      },
+    };
+  };
 }
 
 export interface BoardTraffic {
@@ -49,7 +71,7 @@ export interface BoardTraffic {
   replies: number;
   /**
    * The longest a reply waited for the boards' worker, µs: how far the simulation
-   * was behind its pace (the lagged wall clock) when the board sent it. A real
+   * was behind its pace (the wall clock) when the board sent it. A real
    * board answers at once; a fake one held back this long answers this much later
    * (acknowledgements included, which the author's streamer waits for).
    */
@@ -62,8 +84,8 @@ export function connectBoard(link: Link, channel: MessagePort, scheduler: PacedS
   const writer = link.writable.getWriter();
   channel.onmessage = (m: MessageEvent<StampedChunk>) => {
     const { bytes, sentAt_ms } = m.data;
-    // Epoch ms → this worker's performance.now() µs → the lagged wall clock → virtual time.
-    const due = scheduler.virtualTimeAtWall((sentAt_ms - performance.timeOrigin) * 1000 - BOARD_LAG_US);
+    // Epoch ms → this worker's performance.now() µs → virtual time.
+    const due = scheduler.virtualTimeAtWall((sentAt_ms - performance.timeOrigin) * 1000);
     counts.chunks++;
     const late = scheduler.now() - due;
     if (late > CLOCK_RESOLUTION_US) {
@@ -81,7 +103,7 @@ export function connectBoard(link: Link, channel: MessagePort, scheduler: PacedS
       if (!value) continue;
       channel.postMessage(value);
       counts.replies++;
-      counts.worstReplyWait_us = Math.max(counts.worstReplyWait_us, scheduler.virtualTimeAtWall(laggedWallNow()) - scheduler.now());
+      counts.worstReplyWait_us = Math.max(counts.worstReplyWait_us, scheduler.virtualTimeAtWall(wallNow_us()) - scheduler.now());
     }
     channel.postMessage({ closed: true } satisfies ChannelClosed);
   })();

@@ -17,10 +17,10 @@
  *
  * The boards run on paced virtual time: like firmware, which loops without
  * waiting on a browser's timers, every device loop and link delay happens at its
- * own time; only the author, in the MAXL worker, runs on the wall clock. Their
- * time trails the wall clock by BOARD_LAG_US, so that bytes the author wrote
- * reach a board at the time it wrote them even when this worker is held back
- * (fakeBoardLink.ts says why that is sound).
+ * own time; only the author, in the MAXL worker, runs on the wall clock. Each
+ * wake of their scheduler first reads the chunks that came meanwhile, so that the
+ * bytes the author wrote reach a board at the time it wrote them even when this
+ * worker was held back (fakeBoardLink.ts).
  */
 /// <reference lib="webworker" />
 import { PacedScheduler } from '../../core/index.ts';
@@ -28,7 +28,7 @@ import type { Link } from '../../core/net/link.ts';
 import type { SimulatedMachine } from '../../core/sim/machine.ts';
 import { startSimulatedMachine } from '../../app/worker/simulatedMachines.ts';
 import { RpcError, rpcServer } from './fakeSerialRpc.ts';
-import { connectBoard, laggedWallNow, type BoardTraffic } from './fakeBoardLink.ts';
+import { connectBoard, wakeAfterMail, type BoardTraffic } from './fakeBoardLink.ts';
 
 const scope = self as unknown as DedicatedWorkerGlobalScope;
 
@@ -52,7 +52,7 @@ interface Board {
   traffic: BoardTraffic | null;
 }
 
-const scheduler = new PacedScheduler({ wallNow: laggedWallNow });
+const scheduler = new PacedScheduler({ wake: wakeAfterMail() });
 let sim: SimulatedMachine;
 let boards: Board[] = [];
 let granted = 0;
