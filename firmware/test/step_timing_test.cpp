@@ -330,6 +330,57 @@ TEST(StepWindow, QuadraticPathsEveryStepNoneEarlyLagBounded) {
   }
 }
 
+// A lag that shrinks from one window to the next (a window cut short at a
+// piece's end has a smaller bend; a speed-up ends) makes no burst run: the
+// thresholds in between stay in the window's one run (the ring holds a window
+// more), no step is earlier than the path allows, none later than the larger
+// lag held it. A jump (p0 steps past the thresholds) is still a burst.
+TEST(StepWindow, ShrinkingLagMakesNoBurst) {
+  for (int dir = -1; dir <= 1; dir += 2) {
+    const double stepsPerMm = 80;
+    const double s = 65536.0 / stepsPerMm;  // 819.2 units a step
+    MAXL_StepGenerator g(2, 5, (float)stepsPerMm);
+    const double v = dir * 0.9 * s / 64.0;  // units/µs: ~14 000 steps/s
+    const double p0 = 1000.5 * s;
+    auto p = [&](double t) { return p0 + v * t; };
+    g.reference((int32_t)std::floor(p(0)));
+    const int32_t n0 = g.steps();
+    const int32_t bigLag = MAXL_STEP_LAG_UNITS + 400, smallLag = MAXL_STEP_LAG_UNITS;
+    std::vector<double> times;
+    int bursts = 0;
+    const int w = 1024;
+    for (int i = 0; i < 60; i++) {
+      double t0 = (double)i * w, t1 = t0 + w;
+      int32_t lag = i % 2 ? smallLag : bigLag;
+      MAXL_StepWindow out;
+      g.planWindow((uint16_t)w, (int32_t)std::floor(p(t0)), (int32_t)std::floor(p(t1)), lag, out);
+      ASSERT_LE(out.runs, 1) << "window " << i << " dir " << dir;
+      for (int r = 0; r < out.runs; r++) {
+        if (out.run[r].interval == 0 && out.run[r].count > 1) bursts++;
+        for (int k = 0; k < out.run[r].count; k++)
+          times.push_back(t0 + (out.run[r].first + (double)k * out.run[r].interval) / 65536.0);
+      }
+    }
+    EXPECT_EQ(bursts, 0);
+    ASSERT_GT(times.size(), 800u);
+    for (size_t k = 1; k <= times.size(); k++) {
+      double threshold = dir > 0 ? (n0 + (double)k - 0.5) * s : (n0 - (double)k + 0.5) * s;
+      double crossing = (threshold - p0) / v;  // the exact line's
+      ASSERT_GE(times[k - 1], crossing - 1e-6) << "step " << k << " dir " << dir;  // never early
+      // behind the path by at most the larger lag and a few units of rounding
+      ASSERT_LE((times[k - 1] - crossing) * std::fabs(v), bigLag + 3) << "step " << k << " dir " << dir;
+    }
+    // a jump of five steps at the next window's start: those go at once
+    double t0 = 60.0 * w;
+    int32_t jumped = (int32_t)std::floor(p(t0) + dir * 5 * s);
+    MAXL_StepWindow out;
+    g.planWindow((uint16_t)w, jumped, (int32_t)std::floor(p(t0 + w) + dir * 5 * s), smallLag, out);
+    ASSERT_EQ(out.runs, 2) << "dir " << dir;
+    EXPECT_EQ(out.run[0].interval, 0u);
+    EXPECT_GE(out.run[0].count, 4);
+  }
+}
+
 // ---------------------------------------------------------------- a whole device
 
 namespace {

@@ -3,7 +3,14 @@
 #include "maxl/motion/fixed_point.h"
 
 MAXL_StepGenerator::MAXL_StepGenerator(uint8_t stepPin, uint8_t dirPin, float stepsPerUnit, bool invertDirection)
-    : begun_(false), direction_(0), steps_(0) {
+    : begun_(false),
+      direction_(0),
+      steps_(0)
+#if MAXL_STEP_TIMER
+      ,
+      lastLag_(0)
+#endif
+{
   this->stepPin().number = stepPin;
   this->stepPin().valid = false;
   this->dirPin().number = dirPin;
@@ -204,6 +211,30 @@ uint32_t MAXL_StepGenerator::stepToward(int32_t units, uint32_t max, int8_t dire
 }
 
 #if MAXL_STEP_TIMER
+// The lag for a window from p0 that asks for `lag`. Where the lag shrank since
+// the last window (a window cut short at a piece's end has a smaller bend, a
+// speed-up ended), the thresholds between the last window's m1 and this m0
+// would be a burst at 0, a run of its own, and the ring (MAXL_STEP_RING runs)
+// would then hold a window less of lead. Instead the lag stays just large
+// enough that none is due at 0: m0 below the next upper threshold going up
+// (lag = p0 − floor(U_1) + 1), at or above the next lower one going down
+// (lag = floor(D_1) + 1 − p0).
+// Only between the asked lag and the last window's, so no step is earlier than
+// with the asked lag, and none later than the last window held it; the extra
+// shrinks as the steps go by (the next window's thresholds are past this one's
+// m1). A jump (p0 far past the thresholds) stays a burst.
+inline int32_t MAXL_StepGenerator::keptLag(bool forward, int32_t p0, int32_t lag) {
+  if (lag < lastLag_) {
+    // from the thresholds' whole parts: at most a unit more than needed
+    uint32_t edge = forward ? (uint32_t)upWhole_ : (uint32_t)upWhole_ - (uint32_t)sWhole_;
+    int32_t d = (int32_t)((uint32_t)p0 - edge);
+    int32_t keep = (forward ? d : -d) + 1;
+    if (keep > lag && keep <= lastLag_) lag = keep;
+  }
+  lastLag_ = lag;
+  return lag;
+}
+
 void MAXL_StepGenerator::planWindow(uint16_t w, int32_t p0, int32_t p1, int32_t lag, MAXL_StepWindow& out) {
   out.runs = 0;
   int32_t delta = (int32_t)((uint32_t)p1 - (uint32_t)p0);
@@ -211,6 +242,7 @@ void MAXL_StepGenerator::planWindow(uint16_t w, int32_t p0, int32_t p1, int32_t 
   if (w > 2048) w = 2048;
   if (delta == 0) {
     // at rest: catch up to the step p0 rounds to, either way, at once
+    lastLag_ = 0;
     uint8_t n = stepsUpTo(p0, maxRun);
     if (n) return burstRun(out, n, false);
     n = stepsDownTo(p0, maxRun);
@@ -219,6 +251,7 @@ void MAXL_StepGenerator::planWindow(uint16_t w, int32_t p0, int32_t p1, int32_t 
   }
   bool forward = delta > 0;
   uint32_t dist = forward ? (uint32_t)delta : (uint32_t)0 - (uint32_t)delta;
+  lag = keptLag(forward, p0, lag);
   int32_t back = forward ? -lag : lag;
   int32_t m0 = (int32_t)((uint32_t)p0 + (uint32_t)back);
   int32_t m1 = (int32_t)((uint32_t)p1 + (uint32_t)back);

@@ -95,6 +95,9 @@ class MAXL_StepGenerator {
   uint32_t stepToward(int32_t units, uint32_t max, int8_t direction);
   uint8_t stepsUpTo(int32_t units, uint8_t max) { return (uint8_t)stepToward(units, max, 1); }
   uint8_t stepsDownTo(int32_t units, uint8_t max) { return (uint8_t)stepToward(units, max, -1); }
+#if MAXL_STEP_TIMER
+  int32_t keptLag(bool forward, int32_t p0, int32_t lag);
+#endif
 
 #if MAXL_STEP_TIMER
   // the pins live in the channel (the interrupt's), once
@@ -117,6 +120,7 @@ class MAXL_StepGenerator {
   uint16_t upFrac_;
   int32_t steps_;
 #if MAXL_STEP_TIMER
+  int32_t lastLag_;  // the lag planWindow() last used (0 at rest)
   maxl_fw::StepChannel channel_;
 #endif
 };
