@@ -12,15 +12,6 @@ using namespace maxltest;
 
 namespace {
 void onPosition(float, float) {}
-int32_t mm(double v) { return (int32_t)std::llround(v * 65536.0); }
-
-msg::TimingSegment cruise(uint32_t us) {
-  msg::TimingSegment t{};
-  t.shape = phase::CRUISE;
-  t.phaseCount = 1;
-  t.durations[0] = us;
-  return t;
-}
 
 }  // namespace
 

@@ -13,7 +13,6 @@ using namespace maxl_fw;
 using namespace maxltest;
 
 namespace {
-int32_t mm(double v) { return (int32_t)std::llround(v * 65536.0); }
 
 struct Seen {
   uint32_t t;

@@ -22,7 +22,6 @@ float gRate = -1, gAccel = -1;
 void onRate(float r) { gRate = r; }
 void onAccel(float a) { gAccel = a; }
 
-int32_t mm(double v) { return (int32_t)std::llround(v * 65536.0); }
 
 struct Planned {
   uint32_t start;

@@ -19,14 +19,6 @@ uint32_t gNow = 0;
 void onA(float v) { gSeen.push_back({gNow, 0, v}); }
 void onB(float v) { gSeen.push_back({gNow, 1, v}); }
 
-msg::TimingSegment cruise(uint32_t us) {
-  msg::TimingSegment t{};
-  t.shape = phase::CRUISE;
-  t.phaseCount = 1;
-  t.durations[0] = us;
-  return t;
-}
-
 void runTo(Harness& h, uint32_t from, uint32_t to) {
   for (uint32_t t = from; t <= to; t++) {
     gNow = t;

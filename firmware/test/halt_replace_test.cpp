@@ -11,15 +11,6 @@ using namespace maxltest;
 namespace {
 void onPosition(float, float) {}
 void onEvent(float) {}
-int32_t mm(double v) { return (int32_t)std::llround(v * 65536.0); }
-
-msg::TimingSegment cruise(uint32_t us) {
-  msg::TimingSegment t{};
-  t.shape = phase::CRUISE;
-  t.phaseCount = 1;
-  t.durations[0] = us;
-  return t;
-}
 
 // Four 10 mm segments at 100 mm/s from t = 100 000, one slot, timed.
 void fourCruises(Harness& h) {

@@ -13,14 +13,6 @@ void position(float, float) {}
 void rate(float) {}
 const std::vector<int32_t> ORIGIN1 = {0};
 
-msg::TimingSegment cruise(uint32_t us) {
-  msg::TimingSegment t{};
-  t.shape = phase::CRUISE;
-  t.phaseCount = 1;
-  t.durations[0] = us;
-  t.alpha = 0.0f;
-  return t;
-}
 }  // namespace
 
 TEST(Subscribe, Rules) {
@@ -215,7 +207,6 @@ TEST(Status, ReportsStateDepthAndSticksFlags) {
 // any late start, not MALFORMED. Only with no timing at all in the session (or
 // since a HALT mode 0) is there nothing to continue.
 namespace {
-int32_t mm(double v) { return (int32_t)std::llround(v * 65536.0); }
 
 msg::Status statusNow(Harness& h) {
   h.take();

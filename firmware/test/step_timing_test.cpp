@@ -25,7 +25,6 @@ using namespace maxltest;
 
 namespace {
 
-int32_t mm(double v) { return (int32_t)std::llround(v * 65536.0); }
 
 struct Edge {
   double us;  // exact time of the rising edge (the host timer writes pins at half µs)

@@ -14,7 +14,6 @@ void onPosition(float, float) {}
 std::vector<std::pair<uint32_t, float>> gEvents;
 uint32_t gNow;
 void onEvent(float v) { gEvents.push_back({gNow, v}); }
-int32_t mm(double v) { return (int32_t)std::llround(v * 65536.0); }
 }  // namespace
 
 TEST(Wrap, SegmentsEventsAndStatusAcrossTheWrap) {

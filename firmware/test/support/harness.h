@@ -1,6 +1,7 @@
 // A device on the host hardware layer, driven in virtual time, plus the
 // author's side of its link.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -58,6 +59,18 @@ class Harness {
   Author author;
   std::vector<Packet> pending;  // packets take() put aside for answers()
 };
+
+// A position in the wire's 16.16 fixed-point millimetres.
+inline int32_t mm(double v) { return (int32_t)std::llround(v * 65536.0); }
+
+// One TIMING segment that cruises for `us` microseconds.
+inline maxl_fw::msg::TimingSegment cruise(uint32_t us) {
+  maxl_fw::msg::TimingSegment t{};
+  t.shape = maxl_fw::phase::CRUISE;
+  t.phaseCount = 1;
+  t.durations[0] = us;
+  return t;
+}
 
 std::vector<Packet> decodeFrames(const uint8_t* bytes, size_t n);
 Answer answerOf(const Packet& p);
