@@ -1,22 +1,24 @@
 /**
- * Everything the worker owns: the devices (simulated or real ports), the machine
- * configuration, the MAXL author running them, jogs and jobs, and the snapshots
- * the page draws.
+ * The worker's machine: the configuration, the MAXL author running the devices
+ * (MachineDevices: simulated or real ports), jogs and jobs (JogController,
+ * JobRunner), the snapshots the page draws (SnapshotBuilder); and the router of
+ * the page's commands, tool commands to their tools (tools.ts).
  *
  * A MAXL author is built for one configuration and one set of links, and stops
  * streaming for good after a halt; so whenever the configuration or the devices
  * change, and on Re-arm after STOP, the workbench ends the author and starts a new
  * one where the machine stands. Ports stay open across that (SharedPort).
  */
-import { createMAXL, PacedScheduler, RealScheduler, type DeviceInfo, type Maxl, type RuntimeEvent, type Scheduler } from '../../core/index.ts';
+import { createMAXL, PacedScheduler, RealScheduler, type Maxl, type RuntimeEvent, type Scheduler } from '../../core/index.ts';
 import type { SimulatedMachine } from '../../core/sim/machine.ts';
 import { checkConfig } from './configCheck.ts';
 import { errorWords } from './errorWords.ts';
 import { JobRunner } from './jobRunner.ts';
 import { JogController, epochNow } from './jogController.ts';
+import { MachineDevices } from './machineDevices.ts';
+import type { MoveJob } from './jobRunner.ts';
 import type {
   Command,
-  DeviceView,
   JobRequest,
   LogLevel,
   MachineConfig,
@@ -26,55 +28,40 @@ import type {
   ToolCommand,
   WorkerEvent,
 } from './protocol.ts';
-import { SharedPort } from './sharedPort.ts';
 import { BRIDGED_STREAMER, realBoardStreamer } from './realBoardStreamer.ts';
-import { findGrantedPort, keyLabel, openErrorWords, openPort, portLabel, type OpenedPort, type PortApi, type PortKey, type SerialPortLike } from './serialPorts.ts';
-import { grantedPorts, serialAccess, watchDisconnects } from './workerSerial.ts';
+import type { OpenedPort, PortApi, PortKey, SerialPortLike } from './serialPorts.ts';
+import { serialAccess } from './workerSerial.ts';
 import { decimate, overviewTolerance } from './previewDecimation.ts';
-import { presetConfig, presetViews, startSimulatedMachine, truthOf } from './simulatedMachines.ts';
+import { readyNotes, sampleGapNote } from './runtimeNotes.ts';
+import { presetConfig, presetViews, truthOf } from './simulatedMachines.ts';
 import { SnapshotBuilder } from './snapshotBuilder.ts';
 import type { ToolContext, WorkbenchTool } from './toolContext.ts';
 import { createTools } from './tools.ts';
 
-interface DeviceConnection {
-  id: string;
-  port: SharedPort;
-  simulated: boolean;
-  /** Its bytes cross the page (a port the page opened, for a browser whose workers reach no port). */
-  bridged: boolean;
-  /** The serial port this worker opened for it, if it did. */
-  serialPort: SerialPortLike | null;
-  /** What it said in its last hello. */
-  info: DeviceInfo | null;
-}
-
 /** Clock sync before streaming starts. */
 const SYNC_BEFORE_START_US = 2_000_000;
 
-/** Device reports go to the page at most this often, ms. */
-const DEVICE_REPORT_MS = 250;
-
-export class Workbench {
+/**
+ * The worker's machine, which the tools see as their `ToolContext` (toolContext.ts):
+ * the Workbench itself, read-only to them.
+ */
+export class Workbench implements ToolContext {
   /** Paced virtual time while the machine is simulated, the wall clock for real boards. */
-  private scheduler: Scheduler = new RealScheduler();
-  private devices: DeviceConnection[] = [];
-  private sim: SimulatedMachine | null = null;
-  private presetId: string | null = null;
-  private config: MachineConfig = { motionAxes: ['x', 'y'], limits: { maxVelocity: 100, maxAcceleration: 1000 } };
-  private maxl: Maxl | null = null;
+  scheduler: Scheduler = new RealScheduler();
+  presetId: string | null = null;
+  config: MachineConfig = { motionAxes: ['x', 'y'], limits: { maxVelocity: 100, maxAcceleration: 1000 } };
+  maxl: Maxl | null = null;
+  phase: MachinePhase = 'empty';
+  /** Work origin, machine mm per motion axis. */
+  origin: number[] = [0, 0];
+  private readonly devices: MachineDevices;
   private runtimeId = 0;
-  private phase: MachinePhase = 'empty';
   private problem = '';
   /** The last error the runtime reported, in words: why a device stopped by itself. */
   private lastError = '';
-  private origin: number[] = [0, 0];
   /** Machine mm where the next author starts. */
   private position: number[] = [0, 0];
-  private nextDeviceId = 1;
   private nextLogId = 1;
-  private lastDeviceReport = 0;
-  private devicesChanged = true;
-  private watchingDisconnects = false;
   /** Ports open one after another, in the order the page asked (so devices keep that order). */
   private openingPorts: Promise<void> = Promise.resolve();
   /** Restarts run one after another. */
@@ -86,7 +73,8 @@ export class Workbench {
   /** The tool that holds the machine for its motion, if any (ToolContext.claim). */
   private toolOwner: string | null = null;
 
-  constructor(private readonly post: (e: WorkerEvent, transfer?: Transferable[]) => void) {
+  constructor(readonly post: (e: WorkerEvent, transfer?: Transferable[]) => void) {
+    this.devices = new MachineDevices((level, code, message) => this.log(level, code, message));
     this.jobs = new JobRunner({
       log: (level, code, message) => this.log(level, code, message),
       preview: (name, points, segments) => {
@@ -100,7 +88,12 @@ export class Workbench {
       report: (report) => this.post({ type: 'jog-stopped', report }),
     });
     this.snapshots.onHistorical = (seg) => this.jobs.onHistorical(seg);
-    this.tools = createTools(this.toolContext());
+    this.tools = createTools(this);
+  }
+
+  /** The simulated machine, or null on real boards. */
+  get sim(): SimulatedMachine | null {
+    return this.devices.sim;
   }
 
   handle(cmd: Command): void {
@@ -153,7 +146,7 @@ export class Workbench {
         return;
       }
       case 'check-config':
-        this.post({ type: 'config-check', check: checkConfig(cmd.config, this.knownDevices(), cmd.requestId) });
+        this.post({ type: 'config-check', check: checkConfig(cmd.config, this.devices.known(), cmd.requestId) });
         return;
       case 'jog-step':
         if (this.canJog()) this.jog.step(this.maxl as Maxl, cmd.delta, cmd.speed);
@@ -181,7 +174,7 @@ export class Workbench {
         void this.restart();
         return;
       case 'job-start':
-        this.startJob(cmd.job);
+        this.startJobRequest(cmd.job);
         return;
       case 'job-pause':
         this.jobs.pause();
@@ -218,12 +211,7 @@ export class Workbench {
     this.problem = '';
     this.publish();
     try {
-      const sim = await startSimulatedMachine(id, this.scheduler, (err) => this.log('error', 'SIM', `The simulated machine failed: ${errorWords(err).message}`));
-      this.sim = sim;
-      for (const [name, link] of Object.entries(sim.links)) {
-        this.devices.push({ id: `sim-${this.nextDeviceId++}`, port: new SharedPort({ ...link, label: link.label ?? `sim:${name}` }), simulated: true, bridged: false, serialPort: null, info: null });
-      }
-      this.log('info', 'SIM', `Simulated ${id}: ${Object.keys(sim.links).join(', ')}.`);
+      await this.devices.startSimulated(id, this.scheduler);
     } catch (err) {
       const words = errorWords(err);
       this.phase = 'not-ready';
@@ -232,95 +220,43 @@ export class Workbench {
       this.publish();
       return;
     }
-    this.devicesChanged = true;
     await this.restart();
   }
 
-  /**
-   * A port granted to the page: found among this worker's own granted ports,
-   * opened here, its streams owned here (no byte crosses the page).
-   */
   private async openGrantedPort(api: PortApi, key: PortKey): Promise<void> {
-    const label = keyLabel(key);
-    if (!this.watchingDisconnects) {
-      this.watchingDisconnects = true;
-      watchDisconnects((port, info) => this.portDisappeared(port, info));
-    }
-    let serialPort: SerialPortLike;
-    let opened: OpenedPort;
-    try {
-      serialPort = await findGrantedPort(await grantedPorts(api), key);
-      opened = await openPort(serialPort);
-    } catch (err) {
-      this.log('error', 'CONNECT', `Could not connect ${label} in the worker: ${openErrorWords(err, label)} Nothing changed: the machine runs as before.`);
-      return;
-    }
-    await this.addPort(opened, serialPort);
-  }
-
-  /** A port vanished (unplugged, or the board reset its USB): say what happens next. */
-  private portDisappeared(port: SerialPortLike | null, info: { usbVendorId?: number; usbProductId?: number }): void {
-    const device = port ? this.devices.find((d) => d.serialPort === port) : undefined;
-    const label = device?.port.label ?? portLabel(info);
-    if (port && !device) return; // not one of the machine's
-    this.log(
-      'warning',
-      'PORT_GONE',
-      `${label} disappeared (unplugged, or the board reset its USB). ${device ? 'Its timing stops, so every device brakes to rest on the path; plug it back in and press Add device (or reload the page), then Re-arm.' : 'If it was one of the boards, they brake to rest on the path.'}`,
-    );
+    const opened = await this.devices.openGranted(api, key);
+    if (opened) await this.addPort(opened.link, opened.serialPort);
   }
 
   private async addPort(link: OpenedPort, serialPort: SerialPortLike | null): Promise<void> {
-    const { label, readable, writable, bytesPerSecond, uartByteTime_us } = link;
-    if (this.sim) {
+    if (this.devices.sim) {
       // A real board joins: the simulated machine goes, the configuration stays for editing.
       await this.closeDevices();
       this.presetId = null;
       this.log('info', 'CONNECT', 'Left the simulated machine for real boards; the configuration is kept: check its subscriptions.');
     }
     if (this.scheduler instanceof PacedScheduler) this.useScheduler(new RealScheduler());
-    const close = serialPort ? () => serialPort.close() : undefined;
-    const port = new SharedPort({ readable, writable, label, bytesPerSecond, uartByteTime_us, close });
-    port.onBroken = (why) =>
-      this.log('error', 'PORT_LOST', `${label}: ${why}. Its session is lost: the machine brakes to rest on the path. Plug the board back in and press Add device (or reload the page).`);
-    this.devices.push({ id: `port-${this.nextDeviceId++}`, port, simulated: false, bridged: serialPort === null, serialPort, info: null });
-    this.log('info', 'CONNECT', `Connected ${label}${serialPort ? ' (the worker owns its streams)' : ' (through the page)'}.`);
-    this.devicesChanged = true;
+    this.devices.addPort(link, serialPort);
     await this.restart();
   }
 
   private async removeDevice(id: string): Promise<void> {
-    const device = this.devices.find((d) => d.id === id);
-    if (!device) return;
-    if (device.simulated) {
-      this.log('warning', 'SIM', 'A simulated device goes with its machine: choose another machine from the menu instead.');
-      return;
-    }
-    this.devices = this.devices.filter((d) => d !== device);
+    if (!this.devices.removable(id)) return;
     await this.endAuthor();
-    await device.port.close();
-    this.devicesChanged = true;
+    await this.devices.remove(id);
     await this.restart();
   }
 
   private async closeDevices(): Promise<void> {
     await this.endAuthor();
     this.jobs.forget();
-    for (const d of this.devices) await d.port.close();
-    this.devices = [];
-    await this.sim?.stop();
-    this.sim = null;
-    this.devicesChanged = true;
+    await this.devices.closeAll();
   }
 
   /** Swaps the time base; only between machines, when nothing runs on the old one. */
   private useScheduler(next: Scheduler): void {
     if (this.scheduler instanceof PacedScheduler) this.scheduler.stop();
     this.scheduler = next;
-  }
-
-  private knownDevices(): DeviceInfo[] {
-    return this.devices.flatMap((d) => (d.info ? [d.info] : []));
   }
 
   // --- the author ---
@@ -333,7 +269,7 @@ export class Workbench {
 
   private async doRestart(): Promise<void> {
     await this.endAuthor();
-    if (this.devices.length === 0) {
+    if (this.devices.count === 0) {
       this.setPhase('empty', 'No device: add one, or choose a simulated machine.');
       return;
     }
@@ -346,11 +282,11 @@ export class Workbench {
     // Simulated machines run on paced virtual time, where every timer fires on time
     // and no byte waits on a browser: the core's default margins. Real boards run
     // on the wall clock: margins for their links (realBoardStreamer.ts).
-    const streamer = this.scheduler instanceof PacedScheduler ? undefined : realBoardStreamer(this.devices.map((d) => ({ bytesPerSecond: d.port.bytesPerSecond, bridged: d.bridged })));
+    const streamer = this.scheduler instanceof PacedScheduler ? undefined : realBoardStreamer(this.devices.linkKinds());
     let maxl: Maxl;
     try {
       // Real boards: a dry move first (core/net/warmUp.ts), so the first jog's pump runs warm code.
-      maxl = createMAXL(this.config, { links: this.devices.map((d) => d.port.session()), initialPosition: this.position, scheduler: this.scheduler, streamer, syncBeforeStart_us: SYNC_BEFORE_START_US, warmUp: streamer !== undefined });
+      maxl = createMAXL(this.config, { links: this.devices.sessions(), initialPosition: this.position, scheduler: this.scheduler, streamer, syncBeforeStart_us: SYNC_BEFORE_START_US, warmUp: streamer !== undefined });
     } catch (err) {
       const words = errorWords(err);
       this.setPhase('not-ready', words.message);
@@ -364,47 +300,18 @@ export class Workbench {
     try {
       await maxl.begin();
       if (runtimeId !== this.runtimeId) return;
-      this.learnDevices(maxl);
+      this.devices.learn(maxl);
       this.setPhase('ready', '');
-      this.log('info', 'READY', `Ready: ${this.knownDevices().map((d) => d.name).join(', ')} in sync.`);
-      if (streamer?.leadMargin_us !== undefined) {
-        this.log('info', 'MARGIN', `Real boards stream ${(streamer.leadMargin_us / 1000).toFixed(2)} ms of margin over twice the round trip (now ${(maxl.lead_us / 1000).toFixed(1)} ms of motion ahead).`);
-      }
-      const limit = maxl.feedLimit;
-      // Worth saying where it shapes real jobs (a UART's 25 kB/s: ~1.5 ms), not for native USB's ~30 µs.
-      if (limit?.device && limit.minSegment_us >= 100) {
-        this.log(
-          'info',
-          'LINK',
-          `${limit.device}'s link carries ${(limit.bytesPerSecond / 1000).toFixed(0)} kB/s, so every segment lasts at least ${(limit.minSegment_us / 1000).toFixed(2)} ms (${limit.bytesPerSegment.toFixed(0)} bytes each): short segments run slower than the limits allow.`,
-        );
-      }
+      this.log('info', 'READY', `Ready: ${this.devices.known().map((d) => d.name).join(', ')} in sync.`);
+      for (const n of readyNotes(streamer ?? null, maxl.lead_us, maxl.feedLimit)) this.log(n.level, n.code, n.message);
     } catch (err) {
       if (runtimeId !== this.runtimeId) return;
-      this.learnDevices(maxl);
+      this.devices.learn(maxl);
       const words = errorWords(err);
       this.log('error', words.code, words.message);
       await this.endAuthor();
       this.setPhase('not-ready', words.message);
     }
-  }
-
-  /** Remembers what each device said in its hello (sessions are in link order). */
-  private learnDevices(maxl: Maxl): void {
-    maxl.devices().forEach((report, i) => {
-      const d = this.devices[i];
-      if (!d || !report.firmware) return;
-      d.info = {
-        name: report.name,
-        protocol: 0,
-        firmware: report.firmware,
-        clockHz: 0,
-        segmentCapacity: 0,
-        eventCapacity: 0,
-        readers: report.readers,
-      };
-    });
-    this.devicesChanged = true;
   }
 
   private async endAuthor(): Promise<void> {
@@ -433,21 +340,15 @@ export class Workbench {
       // The machine rests on the path with nothing more to run, even if no device reports a stop.
       this.stoppedByItself(e.device ? `${e.device} refused a segment, and streaming stopped` : 'streaming stopped');
     } else if (e.type === 'device') {
-      this.devicesChanged = true;
+      this.devices.touch();
       if (e.state === 'lost' || e.state === 'rebooted') {
         this.jobs.abort(`${e.device} was lost`, true);
         this.jog.reset();
         if (this.phase === 'ready') this.setPhase('not-ready', `${e.device}: ${e.reason ?? e.state}. The machine brakes to rest on the path. Check the cable and power, then press Re-arm.`);
       }
     } else if (e.type === 'sampleGap') {
-      const g = e.gap;
-      this.log(
-        'warning',
-        g.kind === 'lost' ? 'SAMPLES_LOST' : 'SAMPLES_DUPLICATE',
-        g.kind === 'lost'
-          ? `${e.device}/${e.reader}: ${g.samples} samples lost (${g.batches} batches) between ${(g.from_us / 1e6).toFixed(3)} s and ${(g.to_us / 1e6).toFixed(3)} s`
-          : `${e.device}/${e.reader}: a duplicate batch (${g.droppedSamples} samples) was dropped`,
-      );
+      const n = sampleGapNote(e.device, e.reader, e.gap);
+      this.log(n.level, n.code, n.message);
     } else if (e.type === 'stopped') {
       if (e.position) this.position = [...e.position];
       // A device braked to rest by itself (STOP sets 'halted' first): this author
@@ -486,46 +387,8 @@ export class Workbench {
     return true;
   }
 
-  /** The machine as the tools see it (toolContext.ts). */
-  private toolContext(): ToolContext {
-    const wb = this;
-    return {
-      get maxl() {
-        return wb.maxl;
-      },
-      get phase() {
-        return wb.phase;
-      },
-      get sim() {
-        return wb.sim;
-      },
-      get presetId() {
-        return wb.presetId;
-      },
-      get config() {
-        return wb.config;
-      },
-      get origin() {
-        return wb.origin;
-      },
-      get scheduler() {
-        return wb.scheduler;
-      },
-      claim: (owner, what) => this.claimForTool(owner, what),
-      release: (owner) => {
-        if (this.toolOwner === owner) this.toolOwner = null;
-      },
-      startJob: (job) => {
-        if (!this.claimForTool('job', `start “${job.name}”`)) return false;
-        this.toolOwner = null;
-        return this.jobs.startMoves(job, this.maxl as Maxl);
-      },
-      log: (level, code, message) => this.log(level, code, message),
-      post: (e, transfer) => this.post(e, transfer),
-    };
-  }
-
-  private claimForTool(owner: string, what: string): boolean {
+  /** ToolContext.claim: takes the machine for `owner`'s motion, or says in the log why not. */
+  claim(owner: string, what: string): boolean {
     let why = '';
     if (!this.maxl || this.phase !== 'ready') why = `the machine is ${this.phase}${this.problem ? ` (${this.problem.split('\n')[0]})` : ''}`;
     else if (this.jobs.active) why = 'a job runs: pause or cancel it first';
@@ -539,7 +402,19 @@ export class Workbench {
     return true;
   }
 
-  private startJob(request: JobRequest): void {
+  /** ToolContext.release. */
+  release(owner: string): void {
+    if (this.toolOwner === owner) this.toolOwner = null;
+  }
+
+  /** ToolContext.startJob: a tool's moves as a job. */
+  startJob(job: MoveJob): boolean {
+    if (!this.claim('job', `start “${job.name}”`)) return false;
+    this.toolOwner = null;
+    return this.jobs.startMoves(job, this.maxl as Maxl);
+  }
+
+  private startJobRequest(request: JobRequest): void {
     if (!this.maxl || this.phase !== 'ready') {
       this.log('warning', 'NOT_READY', `Cannot start “${request.name}”: the machine is ${this.phase}.`);
       return;
@@ -567,9 +442,9 @@ export class Workbench {
     const runtimeId = this.runtimeId;
     this.setPhase('connecting', 'Reconnecting to resume the job…');
     try {
-      const report = await maxl.reconnect(this.devices.map((d) => d.port.session()));
+      const report = await maxl.reconnect(this.devices.sessions());
       if (runtimeId !== this.runtimeId) return;
-      this.learnDevices(maxl);
+      this.devices.learn(maxl);
       maxl.resumeJob();
       const name = this.jobs.resumeAfterStop();
       this.lastError = '';
@@ -643,12 +518,7 @@ export class Workbench {
     const locked = this.snapshots.takeLocked();
     const queue = this.snapshots.takeQueue();
     const now = epochNow();
-    let devices: DeviceView[] | null = null;
-    if (this.devicesChanged || now - this.lastDeviceReport > DEVICE_REPORT_MS) {
-      devices = this.deviceViews();
-      this.lastDeviceReport = now;
-      this.devicesChanged = false;
-    }
+    const devices = this.devices.viewsIfDue(maxl, now);
     return {
       type: 'snapshot',
       runtimeId: this.runtimeId,
@@ -664,29 +534,7 @@ export class Workbench {
       jobFed: this.jobs.fed,
       job: this.jobs.progress(),
       devices,
-      truth: this.sim ? truthOf(this.sim) : null,
+      truth: this.devices.sim ? truthOf(this.devices.sim) : null,
     };
   }
-
-  private deviceViews(): DeviceView[] {
-    const reports = this.maxl?.devices() ?? [];
-    return this.devices.map((d, i) => {
-      const r = reports[i];
-      const info = d.info;
-      return {
-        id: d.id,
-        label: d.port.label,
-        name: r?.firmware ? r.name : (info?.name ?? ''),
-        firmware: r?.firmware || info?.firmware || '',
-        readers: (r?.readers ?? info?.readers ?? []).map((x) => ({ name: x.name, kind: x.kind })),
-        connection: r ? (r.state === 'opening' ? 'connecting' : r.state) : d.port.broken ? 'lost' : 'closed',
-        deviceState: r?.deviceState ?? 'unknown',
-        rtt_us: r?.rtt_us ?? NaN,
-        syncError_us: r?.syncError_us ?? NaN,
-        simulated: d.simulated,
-      };
-    });
-  }
 }
-
-
