@@ -10,8 +10,7 @@ import { describe, expect, it } from 'vitest';
 import { MaxlError } from '../errors.ts';
 import type { EvaluatorState } from '../trajectory/events.ts';
 import { lightPainter } from '../sim/presets/index.ts';
-import { distanceToPolyline } from './geometry.ts';
-import { settle, startMachine } from './harness.ts';
+import { restingPlace, settle, startMachine } from './harness.ts';
 
 const PATH = [
   [20, 20],
@@ -53,14 +52,10 @@ describe('an event evaluator fails mid-job', () => {
     expect((idleOutcome as MaxlError).code).toBe('MOVE_INVALID');
 
     // The devices run out of timing before the failing segment and rest on the path.
-    await b.scheduler.advance(3_000_000);
-    b.sim.sync();
-    const steps = b.sim.plant.motorSteps();
-    await b.scheduler.advance(500_000);
-    b.sim.sync();
-    expect(b.sim.plant.motorSteps()).toEqual(steps);
-    const carriage = b.sim.plant.carriage();
-    expect(distanceToPolyline([carriage.x, carriage.y], [start, ...PATH])).toBeLessThan(0.03);
+    const rest = await restingPlace(b, [start, ...PATH]);
+    expect(rest.movedWhileWatched).toBe(false);
+    expect(rest.offPath_mm).toBeLessThan(0.03);
+    const carriage = rest.carriage;
     // The move is locked a slice at a time: the slices before x = 50 ran, and the machine
     // braked along the geometry it held past that point, far short of the move's end (x = 90).
     expect(carriage.x).toBeGreaterThan(40);

@@ -9,6 +9,7 @@ import { nodeWasmLoader } from '../sim/device/nodeWasmLoader.ts';
 import type { MachinePreset } from '../sim/presets/index.ts';
 import type { DeviceInfo } from '../net/session.ts';
 import type { Link } from '../net/link.ts';
+import { distanceToPolyline } from './geometry.ts';
 
 export interface Bench {
   scheduler: VirtualScheduler;
@@ -56,6 +57,22 @@ export async function settle<T>(scheduler: VirtualScheduler, promise: Promise<T>
   if (!done) throw new Error(`still waiting after ${limit_us / 1e6} s of virtual time`);
   if (error !== undefined) throw error;
   return value as T;
+}
+
+/**
+ * After a stop: lets the machine brake for 3 s of virtual time, then watches it
+ * 0.5 s more. Returns where the carriage rests, how far that is from `path` (a
+ * polyline in the machine's first two axes, mm), and whether any motor stepped
+ * while watched (it must not: at rest means still).
+ */
+export async function restingPlace(b: Bench, path: number[][]): Promise<{ carriage: Record<string, number>; offPath_mm: number; movedWhileWatched: boolean }> {
+  await b.scheduler.advance(3_000_000);
+  b.sim.sync();
+  const steps = JSON.stringify(b.sim.plant.motorSteps());
+  await b.scheduler.advance(500_000);
+  b.sim.sync();
+  const carriage = b.sim.plant.carriage();
+  return { carriage, offPath_mm: distanceToPolyline([carriage.x, carriage.y], path), movedWhileWatched: JSON.stringify(b.sim.plant.motorSteps()) !== steps };
 }
 
 /**

@@ -12,8 +12,8 @@ import { MaxlError } from '../errors.ts';
 import type { Message } from '../net/messages.ts';
 import { blotPlotter } from '../sim/presets/index.ts';
 import { tamperLink } from '../sim/testing/tamperLink.ts';
-import { corneredPath, distanceToPolyline } from './geometry.ts';
-import { settle, startMachine } from './harness.ts';
+import { corneredPath } from './geometry.ts';
+import { restingPlace, settle, startMachine } from './harness.ts';
 
 /** The shared path, closed back to its start. */
 const PATH = [...corneredPath(), [10, 10]];
@@ -51,14 +51,10 @@ describe('a device refuses a frame mid-job', () => {
     expect(b.events.findIndex((e) => e.type === 'error')).toBeLessThan(b.events.findIndex((e) => e.type === 'streamStopped'));
 
     // The machine brakes along the geometry it holds and comes to rest on the path.
-    await b.scheduler.advance(3_000_000);
-    b.sim.sync();
-    const steps = b.sim.plant.motorSteps();
-    await b.scheduler.advance(500_000);
-    b.sim.sync();
-    expect(b.sim.plant.motorSteps()).toEqual(steps);
-    const carriage = b.sim.plant.carriage();
-    expect(distanceToPolyline([carriage.x, carriage.y], [start, ...PATH])).toBeLessThan(0.03);
+    const rest = await restingPlace(b, [start, ...PATH]);
+    expect(rest.movedWhileWatched).toBe(false);
+    expect(rest.offPath_mm).toBeLessThan(0.03);
+    const carriage = rest.carriage;
     // Mid-job: past the first corner, short of the last (the path ends where it began, at (10, 10)).
     expect(Math.hypot(carriage.x - 10, carriage.y - 10)).toBeGreaterThan(5);
     expect(carriage.x + carriage.y).toBeGreaterThan(25);

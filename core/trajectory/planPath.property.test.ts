@@ -80,6 +80,16 @@ function plan(points: number[][], speeds: (number | undefined)[], limits: Limits
   return planPath(points[0], points.slice(1).map((end, i) => ({ end, maxVelocity: speeds[i] })), limits);
 }
 
+type PlannedSegment = ReturnType<typeof plan>['segments'][number];
+
+/** Calls `check` for every phase of every segment, with the segment's unit direction. */
+function eachPhase(p: ReturnType<typeof plan>, check: (seg: PlannedSegment, unit: number[], ph: PlannedSegment['phases'][number]) => void): void {
+  for (const seg of p.segments) {
+    const unit = seg.end.map((v, i) => (v - seg.start[i]) / seg.length);
+    for (const ph of seg.phases) check(seg, unit, ph);
+  }
+}
+
 describe.each([2, 3])('planPath properties in %i axes', (axes) => {
   const input = fc.record({ path: pathArb(axes), limits: limitsArb(axes) });
 
@@ -88,18 +98,15 @@ describe.each([2, 3])('planPath properties in %i axes', (axes) => {
       fc.property(input, ({ path, limits }) => {
         const p = plan(path.points, path.speeds, limits);
         const l = resolved(limits, axes);
-        for (const seg of p.segments) {
-          const unit = seg.end.map((v, i) => (v - seg.start[i]) / seg.length);
-          for (const ph of seg.phases) {
-            for (const v of [ph.v0, ph.v0 + ph.a0 * ph.duration]) {
-              const tol = 1e-9 * (1 + Math.abs(v));
-              expect(v).toBeGreaterThanOrEqual(-tol);
-              expect(v).toBeLessThanOrEqual(l.maxSpeed + tol);
-              expect(v).toBeLessThanOrEqual(seg.cruiseLimit + tol);
-              unit.forEach((u, i) => expect(Math.abs(u * v)).toBeLessThanOrEqual(l.axisMaxSpeed[i] + tol));
-            }
+        eachPhase(p, (seg, unit, ph) => {
+          for (const v of [ph.v0, ph.v0 + ph.a0 * ph.duration]) {
+            const tol = 1e-9 * (1 + Math.abs(v));
+            expect(v).toBeGreaterThanOrEqual(-tol);
+            expect(v).toBeLessThanOrEqual(l.maxSpeed + tol);
+            expect(v).toBeLessThanOrEqual(seg.cruiseLimit + tol);
+            unit.forEach((u, i) => expect(Math.abs(u * v)).toBeLessThanOrEqual(l.axisMaxSpeed[i] + tol));
           }
-        }
+        });
         // The move caps, checked from the input rather than from the plan.
         const blocks = refBlocks(path.points, l, path.speeds.map((s) => s ?? Infinity));
         p.segments.forEach((seg, k) => expect(seg.peakVelocity).toBeLessThanOrEqual(blocks[k].cruise * (1 + REL) + 1e-12));
@@ -112,16 +119,13 @@ describe.each([2, 3])('planPath properties in %i axes', (axes) => {
       fc.property(input, ({ path, limits }) => {
         const p = plan(path.points, path.speeds, limits);
         const l = resolved(limits, axes);
-        for (const seg of p.segments) {
-          const unit = seg.end.map((v, i) => (v - seg.start[i]) / seg.length);
-          for (const ph of seg.phases) {
-            const a = Math.abs(ph.a0);
-            const tol = 1e-9 * (1 + a);
-            expect(a).toBeLessThanOrEqual(seg.accelerationLimit + tol);
-            expect(a).toBeLessThanOrEqual(l.maxAccel + tol);
-            unit.forEach((u, i) => expect(Math.abs(u * a)).toBeLessThanOrEqual(l.axisMaxAccel[i] + tol));
-          }
-        }
+        eachPhase(p, (seg, unit, ph) => {
+          const a = Math.abs(ph.a0);
+          const tol = 1e-9 * (1 + a);
+          expect(a).toBeLessThanOrEqual(seg.accelerationLimit + tol);
+          expect(a).toBeLessThanOrEqual(l.maxAccel + tol);
+          unit.forEach((u, i) => expect(Math.abs(u * a)).toBeLessThanOrEqual(l.axisMaxAccel[i] + tol));
+        });
       }),
     );
   });
