@@ -4,8 +4,10 @@
 // its count and in the next threshold, for edge values and 30 000
 // pseudo-random cases across the domain (step sizes from 2^-16 to 2^23 units,
 // positions up to ~140 steps either side, on a threshold's ceiling or a unit
-// short of it). Run in simavr by scripts/firmware-avr.sh; prints
-// "COUNT OK <n>" or the first mismatch.
+// short of it); divideWindow() must equal C's 32-bit division for edge
+// values and 100 000 pseudo-random dividends and divisors of every length.
+// Run in simavr by scripts/firmware-avr.sh; prints "COUNT OK <n>" or the
+// first mismatch.
 #include <MAXL.h>
 #include <avr/sleep.h>
 
@@ -46,6 +48,21 @@ bool same(int32_t m, uint32_t sWhole, uint16_t sFrac, int32_t upWhole, uint16_t 
   return false;
 }
 
+bool sameQuotient(uint32_t n, uint32_t d) {
+  if (!d) return true;
+  uint32_t a = divideWindow(n, d), p = n / d;
+  if (a == p) return true;
+  Serial.print("COUNT DIVIDE MISMATCH n=");
+  Serial.print(n);
+  Serial.print(" d=");
+  Serial.print(d);
+  Serial.print(" asm=");
+  Serial.print(a);
+  Serial.print(" C=");
+  Serial.println(p);
+  return false;
+}
+
 void setup() {
   Serial.begin(1000000);
   uint32_t n = 0;
@@ -80,6 +97,16 @@ void setup() {
     }
     ok = same(m, S, F, upWhole, upFrac, up);
     n++;
+  }
+  const uint32_t es[] = {0, 1, 2, 255, 256, 65535UL, 65536UL, 0xFFFFFFUL, 0x1000000UL, 0x7FFFFFFFUL, 0x80000000UL,
+                         0x80000001UL, 0xFFFFFFFEUL, 0xFFFFFFFFUL};
+  for (uint8_t i = 0; i < 14 && ok; i++)
+    for (uint8_t j = 0; j < 14 && ok; j++, n++) ok = sameQuotient(es[i], es[j]);
+  for (uint32_t i = 0; i < 100000UL && ok; i++, n++) {
+    uint32_t d = next() >> (next() % 32);
+    uint32_t w = 128UL << (next() % 5);
+    uint32_t dividend = (i & 1) ? (w << 20) + d - 1 : next() >> (next() % 32);
+    ok = sameQuotient(dividend, d);
   }
   if (ok) {
     Serial.print("COUNT OK ");

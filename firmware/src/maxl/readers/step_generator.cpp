@@ -44,8 +44,8 @@ void MAXL_StepGenerator::begin() {
 // (n + 1/2)·s. From wherever the count is, with no step limit (a few jumps:
 // see stepToward).
 void MAXL_StepGenerator::reference(int32_t units) {
-  stepToward(units, 0xFFFFFFFFul, 1);
-  stepToward(units, 0xFFFFFFFFul, -1);
+  walkToward(units, 0xFFFFFFFFul, 1);
+  walkToward(units, 0xFFFFFFFFul, -1);
 }
 
 // (n + 1/2)·s in Q16, in 32-bit pieces: with s = S + F/2^16 and
@@ -154,7 +154,7 @@ __attribute__((noinline)) void burstRun(MAXL_StepWindow& out, uint8_t count, boo
 // A window's count and its burst check go that way; the walk below is left
 // for the rest (a reference far away, a count past `max`), where speed matters
 // less than flash.
-uint32_t MAXL_StepGenerator::stepToward(int32_t units, uint32_t max, int8_t direction) {
+uint8_t MAXL_StepGenerator::stepToward(int32_t units, uint8_t max, int8_t direction) {
   if (maxl_fw::countJumpFits(units, upWhole_, sWhole_)) {
     uint32_t whole = (uint32_t)upWhole_;
     uint16_t frac = upFrac_;
@@ -168,30 +168,27 @@ uint32_t MAXL_StepGenerator::stepToward(int32_t units, uint32_t max, int8_t dire
       return k;
     }
   }
-  return walkToward(units, max, direction);
+  return (uint8_t)walkToward(units, max, direction);
 }
 
 // stepToward's general way (out of line: the one-pass count above then needs
-// few registers saved).
+// few registers saved), and reference()'s, with no step limit.
 __attribute__((noinline)) uint32_t MAXL_StepGenerator::walkToward(int32_t units, uint32_t max, int8_t direction) {
   uint32_t n = 0;
   const uint32_t s1 = (uint32_t)sWhole_ + 1u;
+  const bool up = direction > 0;
   while (n < max) {
-    uint32_t d;
-    if (direction > 0) {
-      int32_t up = upCeil();
-      if (units < up) break;
-      d = (uint32_t)units - (uint32_t)up;
-    } else {
-      int32_t down = downCeil();
-      if (units >= down) break;
-      d = (uint32_t)down - 1u - (uint32_t)units;
-    }
+    // up: due while units >= ceil(U_1), d = units − ceil(U_1);
+    // down: due while units < ceil(D_1), d = ceil(D_1) − 1 − units = ~(units − ceil(D_1))
+    int32_t edge = up ? upCeil() : downCeil();
+    if ((units < edge) == up) break;
+    uint32_t d = (uint32_t)units - (uint32_t)edge;
+    if (!up) d = ~d;
     uint32_t k = d / s1 + 1u;
     if (k > max - n) k = max - n;
     // in u32: a count past ±2^31 (a position the step size cannot count to)
     // wraps like the thresholds do, without undefined behaviour
-    setSteps((int32_t)(direction > 0 ? (uint32_t)steps_ + k : (uint32_t)steps_ - k));
+    setSteps((int32_t)(up ? (uint32_t)steps_ + k : (uint32_t)steps_ - k));
     n += k;
   }
   return n;
@@ -261,7 +258,7 @@ void MAXL_StepGenerator::planWindow(uint16_t w, int32_t p0, int32_t p1, int32_t 
   }
   if (burst) burstRun(out, burst, !forward);
   if (!n) return;
-  uint32_t r = (((uint32_t)w << 20) + dist - 1) / dist;
+  uint32_t r = maxl_fw::divideWindow(((uint32_t)w << 20) + dist - 1, dist);
   if (r > 0x7FFFFFFFul) r = 0x7FFFFFFFul;  // w = 2^11 and Δ = 1: one unit, one step at most
   MAXL_StepWindow::Run& run = out.run[out.runs++];
   run.first = timesR(whole, frac, r);
