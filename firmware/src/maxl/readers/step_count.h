@@ -1,6 +1,6 @@
 // A stepper's count moved to a position in one pass: how many step
 // thresholds lie between the next one and the position, and the threshold
-// after them, by one division with a 7-bit quotient and no multiply.
+// after them, by one short division (a 7-bit quotient) and no multiply.
 //
 // In Q16 units (2^-16 of a position unit), with the step size s ≥ 1, the next
 // upper threshold U = (n + 1/2)·s (MAXL_StepGenerator's upWhole_:upFrac_) and
@@ -16,15 +16,16 @@
 // k = floor((e − 1)/s) = q + 1 steps (q, r of d as above), and the next upper
 // threshold is U − k·s = U − s − (d − r) = M + 1 + r.
 //
-// d < 0: no step is due (k = 0). q is found by 7 steps of long division, so
-// only for d < 128·s (k ≤ 128); past that the answer is 255, "not counted
-// here" (the caller walks the general way: step_generator.cpp's stepToward).
+// d < 0: no step is due (k = 0). q is found by long division with a 7-bit
+// quotient, so only for d < 128·s (k ≤ 128); past that the answer is 255,
+// "not counted here" (the caller walks the general way: step_generator.cpp's
+// walkToward).
 //
 // The domain (checked by the caller, countJumpFits): |m| and |upWhole| under
 // 2^29 (8 m of travel) and the step's whole units S under 2^23, so every
 // value below fits a signed 48-bit number: |M|, |U| < 2^45, |d| < 2^46 + 2^39,
-// s·2^7 < 2^46, and the thresholds reached stay within int32 (so this count
-// is the one stepToward's signed compares find, bit for bit).
+// s·2^8 < 2^47, and the thresholds reached stay within int32 (so this count
+// is the one walkToward's signed compares find, bit for bit).
 #ifndef MAXL_READERS_STEP_COUNT_H
 #define MAXL_READERS_STEP_COUNT_H
 
