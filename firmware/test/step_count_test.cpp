@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "maxl/readers/step_count.h"
+#include "maxl/readers/step_generator.h"
 
 using namespace maxl_fw;
 
@@ -144,3 +145,54 @@ TEST(StepCount, DomainIsEightMetresAndStepsUnder128mm) {
   EXPECT_FALSE(countJumpFits(0, 0, 0x800000));
   EXPECT_FALSE(countJumpFits(0, 0, -1));
 }
+
+#if MAXL_STEP_TIMER
+// The whole window (MAXL_StepGenerator::planWindow) by the one-pass count
+// against the same window by the walk: twin generators whose positions differ
+// by K whole steps (s a power of two units, so the shift is exact), the second
+// 2^30 units or more from the origin, outside countJump's domain, so it walks.
+// Their runs must be the same bit for bit, and their counts K apart, over
+// windows of every kind (both ways, at rest, bursts after a lag change, over
+// 127 steps, lengths not a power of two).
+TEST(StepCount, WindowsMatchTheWalkingTwin) {
+  long windows = 0, runs = 0;
+  for (int trial = 0; trial < 600; trial++) {
+    const int k = (int)(next32() % 13);  // s = 2^k units
+    const int32_t s = (int32_t)1 << k;
+    const float spm = 65536.0f / (float)s;
+    const int32_t K = (int32_t)(((int64_t)1 << 30) / s + 1);
+    const int32_t shift = K * s;
+    MAXL_StepGenerator fast(2, 5, spm), walking(2, 5, spm);
+    int32_t p = (int32_t)(next32() % 0x20000000u) - 0x10000000;
+    fast.reference(p);
+    walking.reference(p + shift);
+    ASSERT_EQ(walking.steps() - fast.steps(), K);
+    for (int i = 0; i < 60; i++) {
+      const uint32_t kind = next32() % 16;
+      const uint16_t w = kind == 0 ? (uint16_t)(1 + next32() % 4000) : (uint16_t)(128u << (next32() % 5));
+      const int32_t maxSteps = kind == 1 ? 0 : kind == 2 ? 200 : kind == 3 ? 3 : 110;
+      const int32_t delta = maxSteps ? (int32_t)((int64_t)((int32_t)(next32() % (2u * maxSteps + 1)) - maxSteps) * s +
+                                                 (int32_t)(next32() % (uint32_t)s))
+                                     : 0;
+      const int32_t lag = kind == 4 ? (int32_t)(next32() % 4000) : (int32_t)(next32() % 40);
+      MAXL_StepWindow a, b;
+      fast.planWindow(w, p, p + delta, lag, a);
+      walking.planWindow(w, p + shift, p + delta + shift, lag, b);
+      ASSERT_EQ(a.runs, b.runs) << trial << " " << i;
+      for (int r = 0; r < a.runs; r++) {
+        ASSERT_EQ(a.run[r].first, b.run[r].first) << trial << " " << i << " run " << r;
+        ASSERT_EQ(a.run[r].interval, b.run[r].interval) << trial << " " << i << " run " << r;
+        ASSERT_EQ(a.run[r].count, b.run[r].count) << trial << " " << i << " run " << r;
+        ASSERT_EQ(a.run[r].backward, b.run[r].backward) << trial << " " << i << " run " << r;
+        runs++;
+      }
+      ASSERT_EQ(walking.steps() - fast.steps(), K) << trial << " " << i;
+      windows++;
+      p += delta;
+      if (p > 0x18000000 || p < -0x18000000) break;
+    }
+  }
+  EXPECT_GT(windows, 30000);     // few trials end early at the position bound
+  EXPECT_GT(runs, windows / 2);  // most windows hold steps
+}
+#endif

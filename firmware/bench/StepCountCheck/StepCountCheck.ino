@@ -5,7 +5,10 @@
 // pseudo-random cases across the domain (step sizes from 2^-16 to 2^23 units,
 // positions up to ~140 steps either side, on a threshold's ceiling or a unit
 // short of it); divideWindow() must equal C's 32-bit division for edge
-// values and 100 000 pseudo-random dividends and divisors of every length.
+// values and 100 000 pseudo-random dividends and divisors of every length;
+// and whole windows (MAXL_StepGenerator::planWindow, the assembly's path)
+// must equal their twin's K whole steps away, 2^30 units out, where the count
+// goes by the C walk (as the host's StepCount.WindowsMatchTheWalkingTwin).
 // Run in simavr by scripts/firmware-avr.sh; prints "COUNT OK <n>" or the
 // first mismatch.
 #include <MAXL.h>
@@ -63,6 +66,45 @@ bool sameQuotient(uint32_t n, uint32_t d) {
   return false;
 }
 
+// Windows of the assembly's path against the walk's, on twin generators (see
+// the top); returns false at the first difference.
+bool windowsMatchTheWalk(uint32_t& n) {
+  for (uint8_t trial = 0; trial < 120; trial++) {
+    uint8_t k = (uint8_t)(next() % 13);  // s = 2^k units
+    int32_t s = (int32_t)1 << k;
+    int32_t K = (int32_t)((1L << 30) / s + 1);
+    int32_t shift = K * s;
+    MAXL_StepGenerator fast(2, 5, 65536.0f / (float)s), walking(2, 5, 65536.0f / (float)s);
+    int32_t p = (int32_t)(next() % 0x20000000UL) - 0x10000000L;
+    fast.reference(p);
+    walking.reference(p + shift);
+    for (uint8_t i = 0; i < 50; i++, n++) {
+      uint8_t kind = (uint8_t)(next() % 16);
+      uint16_t w = kind == 0 ? (uint16_t)(1 + next() % 4000) : (uint16_t)(128u << (next() % 5));
+      int32_t maxSteps = kind == 1 ? 0 : kind == 2 ? 200 : kind == 3 ? 3 : 110;
+      int32_t delta = maxSteps ? ((int32_t)(next() % (uint32_t)(2 * maxSteps + 1)) - maxSteps) * s + (int32_t)(next() % (uint32_t)s) : 0;
+      int32_t lag = kind == 4 ? (int32_t)(next() % 4000) : (int32_t)(next() % 40);
+      MAXL_StepWindow a, b;
+      fast.planWindow(w, p, p + delta, lag, a);
+      walking.planWindow(w, p + shift, p + delta + shift, lag, b);
+      bool same = a.runs == b.runs && walking.steps() - fast.steps() == K;
+      for (uint8_t r = 0; same && r < a.runs; r++)
+        same = a.run[r].first == b.run[r].first && a.run[r].interval == b.run[r].interval &&
+               a.run[r].count == b.run[r].count && a.run[r].backward == b.run[r].backward;
+      if (!same) {
+        Serial.print("COUNT WINDOW MISMATCH trial=");
+        Serial.print(trial);
+        Serial.print(" window=");
+        Serial.println(i);
+        return false;
+      }
+      p += delta;
+      if (p > 0x18000000L || p < -0x18000000L) break;
+    }
+  }
+  return true;
+}
+
 void setup() {
   Serial.begin(1000000);
   uint32_t n = 0;
@@ -108,6 +150,7 @@ void setup() {
     uint32_t dividend = (i & 1) ? (w << 20) + d - 1 : next() >> (next() % 32);
     ok = sameQuotient(dividend, d);
   }
+  if (ok) ok = windowsMatchTheWalk(n);
   if (ok) {
     Serial.print("COUNT OK ");
     Serial.println(n);
