@@ -59,6 +59,15 @@ if bash "$root/scripts/firmware-avr-sketch.sh" "$root/firmware/bench/MulHiCheck"
 else
   status=1
 fi
+# The window count's assembly (readers/step_count.h) against its portable form,
+# likewise (the portable form is checked on the host against a threshold walk).
+if bash "$root/scripts/firmware-avr-sketch.sh" "$root/firmware/bench/StepCountCheck" "$out"; then
+  result="$(timeout 300 simavr -m atmega328p -f 16000000 "$out/StepCountCheck/StepCountCheck.elf" 2>&1 | tr -d '\r' | sed 's/\x1b\[[0-9;]*m//g' | grep -E '^COUNT' || true)"
+  echo "AVR step count self-test in simavr: ${result:-no output}"
+  case "$result" in "COUNT OK"*) ;; *) status=1 ;; esac
+else
+  status=1
+fi
 # The step vector's fast path (readers/step_timer.cpp) is AVR assembly, which
 # the host tests cannot run either: drive benchmark sketches in simavr with
 # real frames (bench/firmware/simavr_steps.c, the step-rate benchmark's

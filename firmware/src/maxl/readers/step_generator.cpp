@@ -1,6 +1,7 @@
 #include "maxl/readers/step_generator.h"
 
 #include "maxl/motion/fixed_point.h"
+#include "maxl/readers/step_count.h"
 
 MAXL_StepGenerator::MAXL_StepGenerator(uint8_t stepPin, uint8_t dirPin, float stepsPerUnit, bool invertDirection)
     : begun_(false),
@@ -43,8 +44,8 @@ void MAXL_StepGenerator::begin() {
 // (n + 1/2)·s. From wherever the count is, with no step limit (a few jumps:
 // see stepToward).
 void MAXL_StepGenerator::reference(int32_t units) {
-  stepToward(units, 0xFFFFFFFFul, 1);
-  stepToward(units, 0xFFFFFFFFul, -1);
+  walkToward(units, 0xFFFFFFFFul, 1);
+  walkToward(units, 0xFFFFFFFFul, -1);
 }
 
 // (n + 1/2)·s in Q16, in 32-bit pieces: with s = S + F/2^16 and
@@ -60,20 +61,6 @@ void MAXL_StepGenerator::setSteps(int32_t n) {
   upWhole_ = (int32_t)((uint32_t)n * (uint32_t)sWhole_ + (uint32_t)maxl_fw::mulhi16Cold(n, sFrac_) +
                        (uint32_t)(sWhole_ >> 1) + (frac < lo ? 1u : 0u));
   upFrac_ = frac;
-}
-
-// Thresholds after a step up or down: (n ± 1 + 1/2)·s, exactly.
-inline __attribute__((always_inline)) void MAXL_StepGenerator::thresholdUp() {
-  uint16_t frac = (uint16_t)(upFrac_ + sFrac_);
-  upWhole_ = (int32_t)((uint32_t)upWhole_ + (uint32_t)sWhole_ + (frac < upFrac_ ? 1u : 0u));
-  upFrac_ = frac;
-  steps_ = (int32_t)((uint32_t)steps_ + 1u);
-}
-inline __attribute__((always_inline)) void MAXL_StepGenerator::thresholdDown() {
-  uint16_t frac = (uint16_t)(upFrac_ - sFrac_);
-  upWhole_ = (int32_t)((uint32_t)upWhole_ - (uint32_t)sWhole_ - (upFrac_ < sFrac_ ? 1u : 0u));
-  upFrac_ = frac;
-  steps_ = (int32_t)((uint32_t)steps_ - 1u);
 }
 
 #if MAXL_STEPPER_POLLING
@@ -145,22 +132,6 @@ __attribute__((noinline)) void burstRun(MAXL_StepWindow& out, uint8_t count, boo
 }  // namespace
 #endif
 
-namespace {
-// floor(d / s1) for d < 128·s1 (and s1 < 2^25, so that s1·2^6 fits): the
-// quotient's 7 bits by long division.
-uint8_t quotient7(uint32_t d, uint32_t s1) {
-  uint8_t q = 0;
-  uint32_t t = s1 << 6;
-  for (uint8_t bit = 0x40; bit; bit = (uint8_t)(bit >> 1), t >>= 1) {
-    if (d >= t) {
-      d -= t;
-      q = (uint8_t)(q | bit);
-    }
-  }
-  return q;
-}
-}  // namespace
-
 // Moves the count (and its thresholds) up while `units` is at or past the
 // next upper threshold (direction +1), or down while it is below the lower
 // one (−1), at most `max` steps; returns how many.
@@ -173,38 +144,51 @@ uint8_t quotient7(uint32_t d, uint32_t s1) {
 //   ceil(D_(k+1)) = ceil(D_1 − k·s) >= ceil(D_1) − ceil(k·s) >= units + 1.
 // So k + 1 steps go at once (setSteps keeps the thresholds exact), and the
 // next pass starts from what is left, at most about d/(S·(S + 1)) + 1 steps
-// (one or two at 80 steps/mm). A jump costs a 32-bit division and setSteps
-// (~900 cycles on an AVR), a single step ~75, so under 4·(S + 1) the count
-// moves one threshold at a time.
-uint32_t MAXL_StepGenerator::stepToward(int32_t units, uint32_t max, int8_t direction) {
+// (one or two at 80 steps/mm). A pass costs a 32-bit division and setSteps
+// (~900 cycles on an AVR).
+//
+// First, where the numbers allow (countJumpFits: within 8 m, steps under
+// 128 mm) and at most 128 steps are due, the whole count in one pass:
+// countJump (step_count.h; AVR assembly, ~250 cycles) finds the same count
+// and the same next threshold exactly, by a division with a 7-bit quotient.
+// A window's count and its burst check go that way; the walk below is left
+// for the rest (a reference far away, a count past `max`), where speed matters
+// less than flash.
+uint8_t MAXL_StepGenerator::stepToward(int32_t units, uint8_t max, int8_t direction) {
+  if (maxl_fw::countJumpFits(units, upWhole_, sWhole_)) {
+    uint32_t whole = (uint32_t)upWhole_;
+    uint16_t frac = upFrac_;
+    uint8_t k = maxl_fw::countJump(units, (uint32_t)sWhole_, sFrac_, whole, frac, direction > 0);
+    if (k <= max && k != maxl_fw::COUNT_NOT_HERE) {
+      if (k) {
+        upWhole_ = (int32_t)whole;
+        upFrac_ = frac;
+        steps_ = (int32_t)(direction > 0 ? (uint32_t)steps_ + k : (uint32_t)steps_ - k);
+      }
+      return k;
+    }
+  }
+  return (uint8_t)walkToward(units, max, direction);
+}
+
+// stepToward's general way (out of line: the one-pass count above then needs
+// few registers saved), and reference()'s, with no step limit.
+__attribute__((noinline)) uint32_t MAXL_StepGenerator::walkToward(int32_t units, uint32_t max, int8_t direction) {
   uint32_t n = 0;
   const uint32_t s1 = (uint32_t)sWhole_ + 1u;
+  const bool up = direction > 0;
   while (n < max) {
-    uint32_t d;
-    if (direction > 0) {
-      int32_t up = upCeil();
-      if (units < up) break;
-      d = (uint32_t)units - (uint32_t)up;
-    } else {
-      int32_t down = downCeil();
-      if (units >= down) break;
-      d = (uint32_t)down - 1u - (uint32_t)units;
-    }
-    if ((d >> 2) < s1) {
-      if (direction > 0)
-        thresholdUp();
-      else
-        thresholdDown();
-      n++;
-      continue;
-    }
-    // k = floor(d / s1) + 1 >= 5; in a window (under 128 steps) as 7 steps
-    // of long division instead of a 32-bit division (~200 cycles, not ~650)
-    uint32_t k = (s1 < (1ul << 25) && (d >> 7) < s1 ? quotient7(d, s1) : d / s1) + 1u;
+    // up: due while units >= ceil(U_1), d = units − ceil(U_1);
+    // down: due while units < ceil(D_1), d = ceil(D_1) − 1 − units = ~(units − ceil(D_1))
+    int32_t edge = up ? upCeil() : downCeil();
+    if ((units < edge) == up) break;
+    uint32_t d = (uint32_t)units - (uint32_t)edge;
+    if (!up) d = ~d;
+    uint32_t k = d / s1 + 1u;
     if (k > max - n) k = max - n;
     // in u32: a count past ±2^31 (a position the step size cannot count to)
     // wraps like the thresholds do, without undefined behaviour
-    setSteps((int32_t)(direction > 0 ? (uint32_t)steps_ + k : (uint32_t)steps_ - k));
+    setSteps((int32_t)(up ? (uint32_t)steps_ + k : (uint32_t)steps_ - k));
     n += k;
   }
   return n;
@@ -274,7 +258,7 @@ void MAXL_StepGenerator::planWindow(uint16_t w, int32_t p0, int32_t p1, int32_t 
   }
   if (burst) burstRun(out, burst, !forward);
   if (!n) return;
-  uint32_t r = (((uint32_t)w << 20) + dist - 1) / dist;
+  uint32_t r = maxl_fw::divideWindow(((uint32_t)w << 20) + dist - 1, dist);
   if (r > 0x7FFFFFFFul) r = 0x7FFFFFFFul;  // w = 2^11 and Δ = 1: one unit, one step at most
   MAXL_StepWindow::Run& run = out.run[out.runs++];
   run.first = timesR(whole, frac, r);

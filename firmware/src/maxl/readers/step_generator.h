@@ -90,11 +90,10 @@ class MAXL_StepGenerator {
   // Next thresholds' ceilings (see the top of this file).
   int32_t upCeil() const { return (int32_t)((uint32_t)upWhole_ + (upFrac_ != 0)); }
   int32_t downCeil() const { return (int32_t)((uint32_t)upWhole_ - (uint32_t)sWhole_ + (upFrac_ > sFrac_)); }
-  void thresholdUp();
-  void thresholdDown();
-  uint32_t stepToward(int32_t units, uint32_t max, int8_t direction);
-  uint8_t stepsUpTo(int32_t units, uint8_t max) { return (uint8_t)stepToward(units, max, 1); }
-  uint8_t stepsDownTo(int32_t units, uint8_t max) { return (uint8_t)stepToward(units, max, -1); }
+  uint8_t stepToward(int32_t units, uint8_t max, int8_t direction);
+  uint32_t walkToward(int32_t units, uint32_t max, int8_t direction);
+  uint8_t stepsUpTo(int32_t units, uint8_t max) { return stepToward(units, max, 1); }
+  uint8_t stepsDownTo(int32_t units, uint8_t max) { return stepToward(units, max, -1); }
 #if MAXL_STEP_TIMER
   int32_t keptLag(bool forward, int32_t p0, int32_t lag);
 #endif
