@@ -12,8 +12,8 @@
  * Two CPU burners (busy child processes at nice 10, standing in for a laptop's
  * background work) run beside it from beforeAll to afterAll: the real-time path
  * must hold on a loaded machine. E2E_BURNERS and E2E_BURNER_NICE change them
- * (e2e/support/cpuBurners.ts). The fake boards' process runs at a higher
- * priority than the browser where the system allows it (E2E_BOARDS_NICE,
+ * (e2e/support/cpuBurners.ts). The fake boards' process runs ahead of every
+ * ordinary process where the system allows it (SCHED_FIFO; E2E_BOARDS_PRIORITY,
  * fakeBoards.ts), as real boards, with CPUs of their own, are not starved with
  * the browser; the bytes the workbench writes reach them at the time it wrote
  * them (fakeBoardLink.ts), and the spec prints how long their answers waited.
