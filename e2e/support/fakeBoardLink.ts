@@ -70,8 +70,10 @@ export interface BoardTraffic {
   replies: number;
   /**
    * The longest a reply waited for the boards' process, µs: how far the
-   * simulation was behind its pace (the wall clock) when the board sent it. A
-   * real board answers at once; a fake one held back this long answers this
+   * simulation was behind its pace (the wall clock) when the board sent it
+   * (only replies made while the scheduler runs the simulation; bytes a board
+   * said before its port was opened go out at the open, and waited for nothing).
+   * A real board answers at once; a fake one held back this long answers this
    * much later (acknowledgements included, which the author's streamer waits for).
    */
   worstReplyWait_us: number;
@@ -108,6 +110,7 @@ export function connectBoard(link: Link, socket: WebSocket, scheduler: PacedSche
       // Copied: a link may hand out views of one buffer, and ws sends a view as it is.
       socket.send(Buffer.from(value));
       counts.replies++;
+      if (!scheduler.driving) continue;
       const wait = scheduler.virtualTimeAtWall(wallNow_us()) - scheduler.now();
       counts.worstReplyWait_us = Math.max(counts.worstReplyWait_us, wait);
       if (wait > SLOW_REPLY_US) counts.slowReplies++;
