@@ -61,8 +61,8 @@ async function installFake(page: Page, serialInWorkers = true): Promise<void> {
   if (!boards) throw new Error('the fake boards did not start (see beforeAll)');
   await page.addInitScript(
     ({ pageModule, workerModule, boardsUrl, serialInWorkers }) => {
-      // The worker's half reaches the fake boards over this channel; the app hands the
-      // worker its end first thing (app/worker/workerTestHook.ts).
+      // The worker's half learns over this channel where the page's session of the fake
+      // boards is; the app hands the worker its end first thing (app/worker/workerTestHook.ts).
       const channel = new MessageChannel();
       (window as unknown as Record<string, unknown>).__MAXL_WORKER_TEST_HOOK__ = { module: workerModule, port: channel.port2 };
       // navigator.serial must exist before the app looks; the fake boards load behind it.
