@@ -47,7 +47,7 @@ test.afterAll(() => {
 // stream can be told apart: the author's (its log) or the fake's (a board's `late` chunks and `worstReplyWait_us`).
 test.afterEach(async ({ page }, testInfo) => {
   const faked = await page.evaluate(() => 'fakeSerialReady' in window).catch(() => false);
-  const traffic = faked ? await truth(page).then((t) => t.traffic).catch((err: Error) => `unavailable: ${err.message}`) : 'no fake boards';
+  const traffic = faked ? await truth(page).then((t) => ({ ...t.traffic, pacing: t.pacing })).catch((err: Error) => `unavailable: ${err.message}`) : 'no fake boards';
   // The lead the streamer kept when the boards came ready (2·RTT + margin: the fake's RTT includes its process's delays).
   const margin = await page.locator('[data-testid=log-entry][data-code=MARGIN]').last().textContent({ timeout: 1_000 }).catch(() => null);
   if (faked) console.log(`${testInfo.title} [${testInfo.status}] ${margin ?? 'no MARGIN entry'} traffic: ${JSON.stringify(traffic)}`);

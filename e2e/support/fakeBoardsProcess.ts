@@ -139,7 +139,10 @@ async function answer(session: Session, role: string, call: string, args: unknow
     case 'page truth': {
       sim.sync();
       const traffic = Object.fromEntries(boards.filter((b) => b.traffic).map((b) => [b.name, { ...b.traffic! }]));
-      return { steps: sim.plant.motorSteps(), opened: session.opened, requests: session.requests, traffic };
+      // The boards' own delays: wakes of their scheduler over 5 ms late or long (PacingStall).
+      const stalls = session.scheduler.stalls;
+      const pacing = { stalls: stalls.length, worstLate_ms: Math.max(0, ...stalls.map((s) => s.late_ms)), worstRun_ms: Math.max(0, ...stalls.map((s) => s.run_ms)) };
+      return { steps: sim.plant.motorSteps(), opened: session.opened, requests: session.requests, traffic, pacing };
     }
   }
   throw new RpcError('NotSupportedError', `the fake boards have no ${role} call ${call}`);

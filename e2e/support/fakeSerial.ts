@@ -30,9 +30,18 @@ export interface FakeSerialControl {
   /**
    * Ground truth: each simulated motor's step count now, the devices whose ports
    * were opened, requestPort() calls, and for each opened board the chunks that
-   * reached it and how many came after their time (fakeBoardLink.ts).
+   * reached it and how many came after their time (fakeBoardLink.ts); and the
+   * boards' own pacing: how many wakes of their scheduler came over 5 ms late or
+   * ran over 5 ms, and the worst of each (core/time/pacedScheduler.ts).
    */
-  truth(): Promise<{ steps: Record<string, number>; opened: string[]; requests: number; traffic: Record<string, BoardTraffic> }>;
+  truth(): Promise<{ steps: Record<string, number>; opened: string[]; requests: number; traffic: Record<string, BoardTraffic>; pacing: BoardsPacing }>;
+}
+
+/** The fake boards' scheduler's stalls (PacingStall): the process held back (late) or busy (run). */
+export interface BoardsPacing {
+  stalls: number;
+  worstLate_ms: number;
+  worstRun_ms: number;
 }
 
 type Call = ReturnType<typeof rpcClient>;
