@@ -28,7 +28,7 @@ export default defineConfig({
   preview: { port: 4173, headers: { 'Content-Security-Policy': CSP_HEADER } },
   test: {
     root: here,
-    include: ['core/**/*.test.ts', 'app/**/*.test.ts'],
+    include: ['core/**/*.test.ts', 'app/**/*.test.ts', 'e2e/support/**/*.test.ts'],
     setupFiles: ['core/testing/setup.ts'],
     // Tests run in virtual time: the timeout only guards against a hang, and must not
     // fail a long simulation on a busy machine (the default 5 s did, at 4.5 s alone).

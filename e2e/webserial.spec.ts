@@ -2,7 +2,8 @@
  * The WebSerial code path, end to end, on a loaded machine. A fake
  * navigator.serial exists on the page (an init script) and in the MAXL worker
  * (the worker test hook, docs/test-hooks.md), both in front of simulated boards
- * in a worker of their own (e2e/support/fakeSerial*.ts). "Add device" runs the
+ * in a Node process of their own, outside the browser, reached over WebSockets
+ * on localhost (e2e/support/fakeBoards*.ts, fakeSerial*.ts). "Add device" runs the
  * app's real connect code: requestPort() and getInfo() on the page, then
  * getPorts(), open() and the streams in the worker, which owns them; granted
  * ports reconnect on reload the same way. A jog then moves the simulated motors
@@ -11,16 +12,18 @@
  * Two CPU burners (busy child processes at nice 10, standing in for a laptop's
  * background work) run beside it from beforeAll to afterAll: the real-time path
  * must hold on a loaded machine. E2E_BURNERS and E2E_BURNER_NICE change them
- * (e2e/support/cpuBurners.ts). The fake boards run inside the same browser and
- * share its CPU, where real boards would not: the bytes the workbench writes reach
- * them at the time it wrote them (fakeBoardLink.ts), but their answers wait for
- * their worker, and the author's round trips, hence its lead, grow with that wait.
+ * (e2e/support/cpuBurners.ts). The fake boards' process runs ahead of every
+ * ordinary process where the system allows it (SCHED_FIFO; E2E_BOARDS_PRIORITY,
+ * fakeBoards.ts), as real boards, with CPUs of their own, are not starved with
+ * the browser; the bytes the workbench writes reach them at the time it wrote
+ * them (fakeBoardLink.ts), and the spec prints how long their answers waited.
  */
 import type { Page } from '@playwright/test';
 import type { ChildProcess } from 'node:child_process';
 import { expect, test } from './support/test.ts';
 import path from 'node:path';
 import { burnerSettings, startCpuBurners, stopCpuBurners } from './support/cpuBurners.ts';
+import { startFakeBoards, stopFakeBoards, type FakeBoards } from './support/fakeBoards.ts';
 import type { FakeSerialControl } from './support/fakeSerial.ts';
 import { screenshot } from './support/workbench.ts';
 
@@ -28,11 +31,15 @@ const FAKE_PAGE_MODULE = `/@fs${path.resolve('e2e/support/fakeSerial.ts')}`;
 const FAKE_WORKER_MODULE = `/@fs${path.resolve('e2e/support/fakeSerialInWorker.ts')}`;
 
 let burners: ChildProcess[] = [];
-test.beforeAll(() => {
+let boards: FakeBoards | undefined;
+test.beforeAll(async () => {
+  boards = await startFakeBoards();
+  console.log(`fake boards at ${boards.url}, ${boards.priority}`);
   burners = startCpuBurners(burnerSettings());
 });
 test.afterAll(() => {
   stopCpuBurners(burners);
+  stopFakeBoards(boards);
 });
 
 // Each run says what reached the fake boards (how many chunks came after their time:
@@ -40,8 +47,8 @@ test.afterAll(() => {
 // stream can be told apart: the author's (its log) or the fake's (a board's `late` chunks and `worstReplyWait_us`).
 test.afterEach(async ({ page }, testInfo) => {
   const faked = await page.evaluate(() => 'fakeSerialReady' in window).catch(() => false);
-  const traffic = faked ? await truth(page).then((t) => t.traffic).catch((err: Error) => `unavailable: ${err.message}`) : 'no fake boards';
-  // The lead the streamer kept when the boards came ready (2·RTT + margin: the fake's RTT includes its worker's delays).
+  const traffic = faked ? await truth(page).then((t) => ({ ...t.traffic, pacing: t.pacing })).catch((err: Error) => `unavailable: ${err.message}`) : 'no fake boards';
+  // The lead the streamer kept when the boards came ready (2·RTT + margin: the fake's RTT includes its process's delays).
   const margin = await page.locator('[data-testid=log-entry][data-code=MARGIN]').last().textContent({ timeout: 1_000 }).catch(() => null);
   if (faked) console.log(`${testInfo.title} [${testInfo.status}] ${margin ?? 'no MARGIN entry'} traffic: ${JSON.stringify(traffic)}`);
   if (testInfo.status === testInfo.expectedStatus) return;
@@ -51,14 +58,15 @@ test.afterEach(async ({ page }, testInfo) => {
 });
 
 async function installFake(page: Page, serialInWorkers = true): Promise<void> {
+  if (!boards) throw new Error('the fake boards did not start (see beforeAll)');
   await page.addInitScript(
-    ({ pageModule, workerModule, serialInWorkers }) => {
-      // The worker's half reaches the fake boards over this channel; the app hands the
-      // worker its end first thing (app/worker/workerTestHook.ts).
+    ({ pageModule, workerModule, boardsUrl, serialInWorkers }) => {
+      // The worker's half learns over this channel where the page's session of the fake
+      // boards is; the app hands the worker its end first thing (app/worker/workerTestHook.ts).
       const channel = new MessageChannel();
       (window as unknown as Record<string, unknown>).__MAXL_WORKER_TEST_HOOK__ = { module: workerModule, port: channel.port2 };
       // navigator.serial must exist before the app looks; the fake boards load behind it.
-      const ready = import(/* @vite-ignore */ pageModule).then((m) => m.installFakeSerial('lightPainter', channel.port1, { serialInWorkers }));
+      const ready = import(/* @vite-ignore */ pageModule).then((m) => m.installFakeSerial(boardsUrl, 'lightPainter', channel.port1, { serialInWorkers }));
       (window as unknown as { fakeSerialReady: Promise<unknown> }).fakeSerialReady = ready;
       type Serial = { requestPort(): Promise<unknown>; getPorts(): Promise<unknown[]> };
       const fake = () => (navigator as unknown as { serial: Serial }).serial;
@@ -67,7 +75,7 @@ async function installFake(page: Page, serialInWorkers = true): Promise<void> {
         configurable: true,
       });
     },
-    { pageModule: FAKE_PAGE_MODULE, workerModule: FAKE_WORKER_MODULE, serialInWorkers },
+    { pageModule: FAKE_PAGE_MODULE, workerModule: FAKE_WORKER_MODULE, boardsUrl: boards.url, serialInWorkers },
   );
 }
 
@@ -98,7 +106,7 @@ async function jogMovesTheMotors(page: Page): Promise<void> {
   await expect.poll(async () => (await truth(page)).steps.a - before.a, { timeout: 10_000 }).toBe(800);
   const after = await truth(page);
   expect(after.steps.b - before.b).toBe(800);
-  // The bytes reached every board through the fake's stamped channel (fakePortStreams.ts).
+  // The bytes reached every board through the fake's stamped sockets (fakePortStreams.ts).
   for (const board of ['motorA', 'motorB', 'lightPainter']) expect(after.traffic[board]?.chunks).toBeGreaterThan(0);
   // Nothing starved: no device braked by itself.
   await expect(page.getByTestId('phase')).toHaveText('ready');

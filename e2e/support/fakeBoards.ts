@@ -1,0 +1,125 @@
+/**
+ * Starts and stops the fake boards' Node process (fakeBoardsProcess.ts) for a
+ * spec: `startFakeBoards()` in test.beforeAll, `stopFakeBoards()` in
+ * test.afterAll. The boards then run outside the browser, as real boards run on
+ * hardware of their own, so only the author's side (the page and the MAXL
+ * worker) shares the browser's CPU.
+ *
+ * Their priority, `E2E_BOARDS_PRIORITY`:
+ *  - `realtime` (the default): the process runs under SCHED_FIFO (`chrt`, which
+ *    needs root or CAP_SYS_NICE), so it runs the moment a timer or a socket wakes
+ *    it, ahead of every ordinary process: the nearest a process on the same cores
+ *    comes to a board's CPU of its own. It needs ~12 % of one core (three devices'
+ *    firmware every 100 µs of simulated time), so it takes little from the
+ *    others, and Linux keeps 5 % of each core for them whatever it does
+ *    (sched_rt_runtime_us). Measured on the shared 2-core machine under load: a
+ *    1 ms timer came at most 3.5 ms late under SCHED_FIFO in 10 s, against 55 ms
+ *    at nice -10 in an autogroup of its own and 111 ms at nice 0.
+ *  - `nice`: nice -10, in a session (so an autogroup) of its own at nice -10: with
+ *    Linux's autogroup scheduling (on by default), nice orders only the processes
+ *    of one session, and each session competes with the others as a whole.
+ *  - `equal`: nice 0, in the spec's session: on equal terms with the browser.
+ * Where the system refuses what was asked, the process runs at the next one down
+ * and `priority` says so.
+ */
+import { spawn, spawnSync, type ChildProcess } from 'node:child_process';
+import { existsSync, writeFileSync } from 'node:fs';
+import { setPriority } from 'node:os';
+import { fileURLToPath } from 'node:url';
+
+export interface FakeBoards {
+  /** ws://127.0.0.1:PORT, where the page's and the worker's fakes reach them. */
+  url: string;
+  /** How the boards' process is scheduled, and why if it is not what was asked for. */
+  priority: string;
+  process: ChildProcess;
+}
+
+export type BoardsPriority = 'realtime' | 'nice' | 'equal';
+
+const ENTRY = fileURLToPath(new URL('./fakeBoardsProcess.ts', import.meta.url));
+const STARTUP_MS = 30_000;
+/** SCHED_FIFO priority (1–99): above every ordinary process, below the kernel's own threads (50). */
+const FIFO_PRIORITY = 10;
+const NICE = -10;
+
+/** From the environment: `E2E_BOARDS_PRIORITY` (default realtime). */
+export function boardsPriority(env: NodeJS.ProcessEnv = process.env): BoardsPriority {
+  const p = env.E2E_BOARDS_PRIORITY ?? 'realtime';
+  if (p !== 'realtime' && p !== 'nice' && p !== 'equal') throw new Error(`E2E_BOARDS_PRIORITY must be realtime, nice or equal, not "${p}"`);
+  return p;
+}
+
+export async function startFakeBoards(asked = boardsPriority()): Promise<FakeBoards> {
+  // tsx runs the TypeScript (the core's, the fake's) as it is, in Node.
+  const node = [process.execPath, '--import', 'tsx', ENTRY];
+  let command = node;
+  let priority = 'nice 0, on equal terms with the browser';
+  if (asked === 'realtime') {
+    const refused = fifoRefused();
+    if (refused === null) {
+      command = ['chrt', '--fifo', String(FIFO_PRIORITY), ...node];
+      priority = `SCHED_FIFO ${FIFO_PRIORITY}`;
+    } else priority = `SCHED_FIFO was refused (${refused})`;
+  }
+  const ownSession = asked === 'nice' || (asked === 'realtime' && command === node);
+  const child = spawn(command[0], command.slice(1), { stdio: ['pipe', 'pipe', 'inherit'], detached: ownSession });
+  if (ownSession && child.pid !== undefined) priority = `${asked === 'realtime' ? `${priority}: ` : ''}${prioritise(child.pid, NICE)}`;
+  const url = await listeningUrl(child);
+  // Its later output (a firmware's trap, say) goes to the spec's.
+  child.stdout!.on('data', (text: string) => process.stdout.write(`fake boards: ${text}`));
+  return { url, priority, process: child };
+}
+
+export function stopFakeBoards(boards: FakeBoards | undefined): void {
+  if (!boards) return;
+  boards.process.stdin?.end();
+  if (boards.process.exitCode === null && boards.process.signalCode === null) boards.process.kill('SIGTERM');
+}
+
+/** Null if this system lets us run a process under SCHED_FIFO, else why not. */
+function fifoRefused(): string | null {
+  const probe = spawnSync('chrt', ['--fifo', String(FIFO_PRIORITY), 'true'], { encoding: 'utf8' });
+  if (probe.error) return `chrt: ${probe.error.message}`;
+  return probe.status === 0 ? null : probe.stderr.trim() || `chrt exited ${probe.status}`;
+}
+
+/** Gives process `pid` (a session leader) nice `nice`, and its autogroup too where there is one; says what it got. */
+function prioritise(pid: number, nice: number): string {
+  try {
+    setPriority(pid, nice);
+  } catch (err) {
+    return `nice 0 (nice ${nice} was refused: ${(err as Error).message}; the boards compete with the browser on equal terms)`;
+  }
+  const autogroup = `/proc/${pid}/autogroup`;
+  if (!existsSync(autogroup)) return `nice ${nice}`;
+  try {
+    writeFileSync(autogroup, String(nice));
+    return `nice ${nice}, in an autogroup of its own at nice ${nice}`;
+  } catch (err) {
+    return `nice ${nice}, in an autogroup of its own at nice 0 (nice ${nice} was refused: ${(err as Error).message})`;
+  }
+}
+
+/** The server's address, from the process's first line of output. */
+function listeningUrl(child: ChildProcess): Promise<string> {
+  return new Promise<string>((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`the fake boards did not start within ${STARTUP_MS / 1000} s`)), STARTUP_MS);
+    let out = '';
+    child.stdout!.setEncoding('utf8');
+    const onData = (text: string) => {
+      out += text;
+      const found = /listening on (ws:\/\/\S+)/.exec(out);
+      if (!found) return;
+      clearTimeout(timer);
+      child.stdout!.off('data', onData);
+      resolve(found[1]);
+    };
+    child.stdout!.on('data', onData);
+    child.on('exit', (code, signal) => {
+      clearTimeout(timer);
+      reject(new Error(`the fake boards' process ended before it listened (exit ${code ?? signal}): ${out}`));
+    });
+    child.on('error', (err) => reject(new Error(`the fake boards' process could not start: ${err.message}`)));
+  });
+}
