@@ -380,6 +380,32 @@ TEST(StepWindow, ShrinkingLagMakesNoBurst) {
   }
 }
 
+// The kept lag where the last window's m1 sits just below a threshold that has a
+// fraction (819.2 units a step: every threshold has one): the next window, asked
+// a smaller lag, keeps exactly the last one, so its first threshold is not
+// already due and it has one run. (The lag from the thresholds' floors came out
+// a unit larger than the last, was refused, and the window began with a burst.)
+TEST(StepWindow, KeptLagBelowAThresholdWithAFraction) {
+  const double stepsPerMm = 80;
+  const double s = 65536.0 / stepsPerMm;
+  const int32_t bigLag = MAXL_STEP_LAG_UNITS + 400, smallLag = MAXL_STEP_LAG_UNITS;
+  const int32_t span = (int32_t)(5.3 * s);  // each window ~5 steps
+  int cases = 0;
+  for (int dir = -1; dir <= 1; dir += 2) {
+    for (int32_t offset = 0; offset < (int32_t)s + 2; offset++) {
+      MAXL_StepGenerator g(2, 5, (float)stepsPerMm);
+      const int32_t start = (int32_t)std::floor(1000 * s) + dir * offset;
+      g.reference(start);
+      MAXL_StepWindow a, b;
+      g.planWindow(1024, start, start + dir * span, bigLag, a);
+      g.planWindow(1024, start + dir * span, start + dir * 2 * span, smallLag, b);
+      ASSERT_EQ(b.runs, 1) << "dir " << dir << " offset " << offset;
+      cases++;
+    }
+  }
+  EXPECT_EQ(cases, 2 * ((int32_t)s + 2));
+}
+
 // ---------------------------------------------------------------- a whole device
 
 namespace {

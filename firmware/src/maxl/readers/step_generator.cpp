@@ -201,18 +201,18 @@ __attribute__((noinline)) uint32_t MAXL_StepGenerator::walkToward(int32_t units,
 // would be a burst at 0, a run of its own, and the ring (MAXL_STEP_RING runs)
 // would then hold a window less of lead. Instead the lag stays just large
 // enough that none is due at 0: m0 below the next upper threshold going up
-// (lag = p0 − floor(U_1) + 1), at or above the next lower one going down
-// (lag = floor(D_1) + 1 − p0).
+// (m0 < ceil(U_1): lag = p0 − ceil(U_1) + 1), at or above the next lower one
+// going down (m0 >= ceil(D_1): lag = ceil(D_1) − p0). (From the floors, as this
+// did at first, the lag came out a unit too large wherever the threshold has a
+// fraction: past the last window's by one where that window's m1 was just below
+// the threshold, so refused, and the window began with a burst after all.)
 // Only between the asked lag and the last window's, so no step is earlier than
 // with the asked lag, and none later than the last window held it; the extra
 // shrinks as the steps go by (the next window's thresholds are past this one's
 // m1). A jump (p0 far past the thresholds) stays a burst.
 inline int32_t MAXL_StepGenerator::keptLag(bool forward, int32_t p0, int32_t lag) {
   if (lag < lastLag_) {
-    // from the thresholds' whole parts: at most a unit more than needed
-    uint32_t edge = forward ? (uint32_t)upWhole_ : (uint32_t)upWhole_ - (uint32_t)sWhole_;
-    int32_t d = (int32_t)((uint32_t)p0 - edge);
-    int32_t keep = (forward ? d : -d) + 1;
+    int32_t keep = forward ? (int32_t)((uint32_t)p0 - (uint32_t)upCeil() + 1u) : (int32_t)((uint32_t)downCeil() - (uint32_t)p0);
     if (keep > lag && keep <= lastLag_) lag = keep;
   }
   lastLag_ = lag;
