@@ -163,6 +163,21 @@ export class LookaheadPlanner {
     return this.plannedCount === 0;
   }
 
+  /** Whether the plan of the block `offset` places after the front (0 = the front) is final. */
+  isFinal(offset: number): boolean {
+    return offset < this.plannedCount;
+  }
+
+  /** The final entry speed² of the block `offset` places after the front; meaningful only while isFinal(offset). */
+  finalEntry2(offset: number): number {
+    return this.entry2s[(this.first + offset) & this.mask];
+  }
+
+  /** The final exit speed² of the block `offset` places after the front; meaningful only while isFinal(offset). */
+  finalExit2(offset: number): number {
+    return this.exit2s[(this.first + offset) & this.mask];
+  }
+
   /** Squared speed at which the front block (or the next block appended, if none) starts. */
   get frontSpeed2(): number {
     return this.frontEntry2;

@@ -29,11 +29,8 @@ import { actuatorPosition } from '../config/transforms.ts';
 import {
   actuatorRate,
   directionInto,
-  entryCap2,
   floorCruise2,
   hasNonlinearTransform,
-  lineAccel,
-  lineCruise2,
   segmentsForMove,
   tailAfter,
   validateMove,
@@ -42,7 +39,8 @@ import {
   type PathTail,
   type ValidatedMove,
 } from './moves.ts';
-import { PendingSegments, type PendingFront, type PendingLine } from './pendingSegments.ts';
+import { PendingSegments, type PendingFront } from './pendingSegments.ts';
+import { LineLimits } from './lineLimits.ts';
 import type { HistoryRecordFields, TrajectoryHistory } from './history.ts';
 import { PHASE_STRIDE, TRAPEZOID_MAX_PHASES, writeTrapezoid } from '../plan/phases.ts';
 import type { QueueEventType, QueueView } from './queueView.ts';
@@ -108,8 +106,8 @@ export class TrajectoryQueue implements QueueView {
   private readonly columnar: boolean;
   /** Two unit-vector buffers for columnar appends: the tail's direction is one, the new segment's the other. */
   private readonly unitBuffers: [number[], number[]];
-  /** The columnar append's inputs, reused. */
-  private readonly line: PendingLine;
+  /** The machine's limits as a line's planner inputs need them. */
+  private readonly lineLimits: LineLimits;
   private readonly planner: LookaheadPlanner;
   /** Segments finalised during the current call, reported once it returns. */
   private newlyPlanned: Segment[] = [];
@@ -160,8 +158,8 @@ export class TrajectoryQueue implements QueueView {
     const zeros = () => new Array<number>(axes).fill(0);
     this.lockedPosition = zeros();
     this.lockedUnit = zeros();
-    this.front = { start: zeros(), end: zeros(), unit: zeros(), events: [], actuatorStart: [], actuatorEnd: null, length: 0, accel: 0, cruise2: 0, planned: false, entry2: 0 };
-    this.line = { id: 0, moveId: 0, source: null as unknown as ValidatedMove, start: position, unit: this.unitBuffers[0], length: 0, accel: 0, cruise2: 0, maxEntry2: 0, actuatorStart: [] };
+    this.front = { start: zeros(), end: zeros(), unit: zeros(), events: [], actuatorStart: [], actuatorEnd: null, length: 0, accel: 0, cruise2: 0 };
+    this.lineLimits = new LineLimits(config.limits);
   }
 
   /**
@@ -373,7 +371,6 @@ export class TrajectoryQueue implements QueueView {
    */
   private enqueueLine(move: ValidatedMove, moveId: number): MoveReceipt | null {
     const tail = this.tail;
-    const line = this.line;
     const unit = tail.unit === this.unitBuffers[0] ? this.unitBuffers[1] : this.unitBuffers[0];
     const length = directionInto(tail.position, move.end, unit);
     if (length < ZERO_LENGTH_MM) {
@@ -381,30 +378,23 @@ export class TrajectoryQueue implements QueueView {
       this.skippedZeroLength++;
       return { moveId, segmentIds: [], skipped: true };
     }
-    const limits = this.config.limits;
-    const cruise2 = floorCruise2(lineCruise2(limits, move, unit), length, this.minSegmentDuration_s);
-    line.id = this.nextSegmentId++;
-    line.moveId = moveId;
-    line.source = move;
-    line.start = tail.position;
-    line.unit = unit;
-    line.length = length;
-    line.accel = lineAccel(limits, move, unit);
-    line.cruise2 = cruise2;
-    line.maxEntry2 = entryCap2(limits, tail.unit, tail.cruise2, unit, cruise2, true);
-    line.actuatorStart = actuatorPosition(this.config.transforms, tail.position);
-    this.pending.push(line);
-    this.planner.append(length, line.accel, line.maxEntry2);
+    const limits = this.lineLimits;
+    const cruise2 = floorCruise2(limits.cruise2(move.maxVelocity, unit), length, this.minSegmentDuration_s);
+    const accel = limits.accel(move.maxAcceleration, unit);
+    const maxEntry2 = limits.entryCap2(tail.unit, tail.cruise2, unit, cruise2);
+    const id = this.nextSegmentId++;
+    this.pending.push(id, moveId, move, tail.position, unit, length, accel, cruise2, maxEntry2, actuatorPosition(this.config.transforms, tail.position));
+    this.planner.append(length, accel, maxEntry2);
     tail.position = move.end;
     tail.unit = unit;
     tail.cruise2 = cruise2;
-    return { moveId, segmentIds: [line.id], skipped: false };
+    return { moveId, segmentIds: [id], skipped: false };
   }
 
   /** Moves the columnar tail into `live` as objects, so that the untransmitted path is all objects. */
   private materialize(): void {
     if (this.pending.size === 0) return;
-    const segments = this.pending.takeAll();
+    const segments = this.pending.takeAll(this.planner, this.untransmitted);
     for (let i = 0; i < segments.length; i++) this.live.push(segments[i]);
     this.untransmitted += segments.length;
   }
@@ -703,8 +693,8 @@ export class TrajectoryQueue implements QueueView {
     const start_us = this.nextStart_us(earliestStart_us);
     // Whatever was transmitted ends by start_us (the transmitted path's end, or earlier).
     if (this.head < this.live.length) this.retireUntil(start_us);
-    // As timeFront() and transmitNext(): a final plan's entry, else the front speed; the exit is lockFront()'s.
-    const entry2 = f.planned ? f.entry2 : this.planner.frontSpeed2;
+    // As timeFront() and transmitNext(): the front speed (a final plan's entry is the front speed too); the exit is lockFront()'s.
+    const entry2 = this.planner.frontSpeed2;
     this.pending.dropFront();
     const exit2 = this.planner.lockFront();
     // Segment.time()'s trapezoid and duration, written to a buffer instead of a new array.
@@ -758,7 +748,7 @@ export class TrajectoryQueue implements QueueView {
     if (this.untransmitted === 0) {
       if (this.pending.size === 0) return undefined;
       // The front is columnar: its object is made now, as it is about to be sent.
-      this.live.push(this.pending.takeFront());
+      this.live.push(this.pending.takeFront(this.planner, 0));
       this.untransmitted = 1;
     }
     const next = this.live[this.live.length - this.untransmitted];
@@ -869,11 +859,8 @@ export class TrajectoryQueue implements QueueView {
 
   /** The planner's report of a final plan, by offset from the first untransmitted segment. */
   private onPlanned(offset: number, entry2: number, exit2: number): void {
-    if (offset >= this.untransmitted) {
-      // In the columnar tail: the object, when made, is planned and timed from these.
-      this.pending.setPlanned(offset - this.untransmitted, entry2, exit2);
-      return;
-    }
+    // In the columnar tail: the object, when made, is planned and timed from the planner's final plan.
+    if (offset >= this.untransmitted) return;
     const seg = this.live[this.live.length - this.untransmitted + offset];
     seg.entry2 = entry2;
     seg.exit2 = exit2;
