@@ -41,7 +41,7 @@ import {
 } from './moves.ts';
 import { PendingSegments, type PendingFront } from './pendingSegments.ts';
 import { LineLimits } from './lineLimits.ts';
-import type { HistoryRecordFields, TrajectoryHistory } from './history.ts';
+import type { TrajectoryHistory } from './history.ts';
 import { PHASE_STRIDE, TRAPEZOID_MAX_PHASES, writeTrapezoid } from '../plan/phases.ts';
 import type { QueueEventType, QueueView } from './queueView.ts';
 import { Segment, type SegmentState } from './segment.ts';
@@ -138,10 +138,9 @@ export class TrajectoryQueue implements QueueView {
 
   /** The author's as-planned history: each segment is recorded as it is locked, before listeners hear of it. */
   private readonly history: TrajectoryHistory | undefined;
-  /** executeFrontNow()'s reused buffers: the front's fields, its packed timing, its history record. */
+  /** executeFrontNow()'s reused buffers: the front's fields, and its packed timing when there is no history to write it into. */
   private readonly front: PendingFront;
   private readonly timingBuffer = new Float64Array(TRAPEZOID_MAX_PHASES * PHASE_STRIDE);
-  private readonly record: HistoryRecordFields = { startTime_us: 0, duration_s: 0, length: 0, actuatorStart: [], actuatorRate: [], eventsAtStart: null };
 
   constructor(config: ResolvedConfig, initialPosition?: number[], history?: TrajectoryHistory) {
     this.config = config;
@@ -697,9 +696,16 @@ export class TrajectoryQueue implements QueueView {
     const entry2 = this.planner.frontSpeed2;
     this.pending.dropFront();
     const exit2 = this.planner.lockFront();
-    // Segment.time()'s trapezoid and duration, written to a buffer instead of a new array.
-    const n = writeTrapezoid(this.timingBuffer, 0, f.length, entry2, exit2, f.cruise2, f.accel) * PHASE_STRIDE;
-    const duration_s = n === 0 ? 0 : this.timingBuffer[n - PHASE_STRIDE] + this.timingBuffer[n - PHASE_STRIDE + 1];
+    // Segment.time()'s trapezoid and duration, written into the history's ring (or a buffer) instead of a new array.
+    let duration_s: number;
+    if (this.history) {
+      const a0 = f.actuatorStart;
+      const rate = a0.length > 0 ? actuatorRate(a0, f.actuatorEnd as number[], f.length) : a0;
+      duration_s = this.history.pushTrapezoid(start_us, f.length, entry2, exit2, f.cruise2, f.accel, f.start, f.unit, a0, rate, this.lockedEventValues);
+    } else {
+      const last = (writeTrapezoid(this.timingBuffer, 0, f.length, entry2, exit2, f.cruise2, f.accel) - 1) * PHASE_STRIDE;
+      duration_s = this.timingBuffer[last] + this.timingBuffer[last + 1];
+    }
     this.lockedEnd_us = start_us + duration_s * 1e6;
     this.lockedExit2 = exit2;
     this.setLockedTail(f.end, f.unit, f.cruise2);
@@ -707,16 +713,6 @@ export class TrajectoryQueue implements QueueView {
     if (this.head === this.live.length && this.head > 0) {
       this.live.length = 0;
       this.head = 0;
-    }
-    if (this.history) {
-      const r = this.record;
-      r.startTime_us = start_us;
-      r.duration_s = duration_s;
-      r.length = f.length;
-      r.actuatorStart = f.actuatorStart;
-      r.actuatorRate = f.actuatorStart.length > 0 ? actuatorRate(f.actuatorStart, f.actuatorEnd as number[], f.length) : f.actuatorStart;
-      r.eventsAtStart = this.lockedEventValues;
-      this.history.pushRecord(r, this.timingBuffer, n, f.start, f.unit, null);
     }
     this.flushPlanned();
     this.wakeWaiters();
