@@ -20,7 +20,7 @@
  * untransmitted path is read or edited as objects (materialize): a deep lookahead
  * then costs no garbage-collector time. docs/architecture.md §3 has the rules.
  */
-import { abortedError, MaxlError } from '../errors.ts';
+import { MaxlError } from '../errors.ts';
 import type { ResolvedConfig } from '../config/types.ts';
 import { LookaheadPlanner } from '../plan/lookahead.ts';
 import { shouldDropSpent } from '../plan/spentPrefix.ts';
@@ -41,6 +41,7 @@ import {
 } from './moves.ts';
 import { PendingSegments, type PendingFront } from './pendingSegments.ts';
 import { LineLimits } from './lineLimits.ts';
+import { RoomGate } from './roomGate.ts';
 import type { TrajectoryHistory } from './history.ts';
 import { PHASE_STRIDE, TRAPEZOID_MAX_PHASES, writeTrapezoid } from '../plan/phases.ts';
 import type { QueueEventType, QueueView } from './queueView.ts';
@@ -133,8 +134,7 @@ export class TrajectoryQueue implements QueueView {
   private lockedEventValues: number[];
   private listeners: QueueListener[] = [];
   /** Producers waiting for room, oldest first, and slots promised to woken ones. */
-  private roomWaiters: Array<() => void> = [];
-  private reserved = 0;
+  private readonly gate = new RoomGate();
 
   /** The author's as-planned history: each segment is recorded as it is locked, before listeners hear of it. */
   private readonly history: TrajectoryHistory | undefined;
@@ -200,8 +200,9 @@ export class TrajectoryQueue implements QueueView {
    */
   hasRoom(): boolean {
     const untransmitted = this.untransmitted + this.pending.size;
-    if (untransmitted + this.reserved < this.capacity) return true;
-    return this.reserved === 0 && this.planner.needsMorePath && untransmitted < MAX_LOOKAHEAD_SEGMENTS;
+    const reserved = this.gate.reserved;
+    if (untransmitted + reserved < this.capacity) return true;
+    return reserved === 0 && this.planner.needsMorePath && untransmitted < MAX_LOOKAHEAD_SEGMENTS;
   }
 
   /** The end of the path as appended so far (mm, motion axes). */
@@ -289,30 +290,12 @@ export class TrajectoryQueue implements QueueView {
    * appendValidated(move, true). Waiters are served in the order they came.
    */
   reserveSlot(signal?: AbortSignal): Promise<void> {
-    if (signal?.aborted) return Promise.reject(abortedError(signal, 'the wait for room in the queue'));
-    if (this.hasRoom() && this.roomWaiters.length === 0) {
-      this.reserved++;
-      return Promise.resolve();
-    }
-    if (!signal) return new Promise((resolve) => this.roomWaiters.push(resolve));
-    // An aborted waiter leaves the line at once, so it never takes a slot.
-    return new Promise((resolve, reject) => {
-      const waiter = () => {
-        signal.removeEventListener('abort', onAbort);
-        resolve();
-      };
-      const onAbort = () => {
-        this.roomWaiters = this.roomWaiters.filter((w) => w !== waiter);
-        reject(abortedError(signal, 'the wait for room in the queue'));
-      };
-      signal.addEventListener('abort', onAbort, { once: true });
-      this.roomWaiters.push(waiter);
-    });
+    return this.gate.reserve(!signal?.aborted && this.hasRoom(), signal);
   }
 
   /** Gives back a slot from reserveSlot() that will not be used (its move was abandoned). */
   releaseSlot(): void {
-    this.reserved--;
+    this.gate.release();
     this.wakeWaiters();
   }
 
@@ -321,14 +304,14 @@ export class TrajectoryQueue implements QueueView {
    * reserveSlot(); without one the move is appended whether or not there is room.
    */
   appendValidated(move: ValidatedMove, reserved = false): MoveReceipt {
-    if (reserved) this.reserved--;
+    if (reserved) this.gate.release();
     // The move's id is taken only once its segments exist (a transform may refuse them).
     const receipt = this.enqueue(move, this.nextMoveId, null);
     this.nextMoveId++;
     this.flushPlanned();
     // Past capacity the lookahead lets one producer in at a time: the next may come in if
     // this move left the front still short of the path it needs.
-    if (this.roomWaiters.length > 0) this.wakeWaiters();
+    if (this.gate.waiting > 0) this.wakeWaiters();
     return receipt;
   }
 
@@ -894,11 +877,7 @@ export class TrajectoryQueue implements QueueView {
   }
 
   private wakeWaiters(): void {
-    while (this.roomWaiters.length > 0 && this.hasRoom()) {
-      const resolve = this.roomWaiters.shift() as () => void;
-      this.reserved++;
-      resolve();
-    }
+    while (this.gate.waiting > 0 && this.hasRoom()) this.gate.admitNext();
   }
 }
 
