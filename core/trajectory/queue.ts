@@ -42,6 +42,7 @@ import {
 import { PendingSegments, type PendingFront } from './pendingSegments.ts';
 import { LineLimits } from './lineLimits.ts';
 import { RoomGate } from './roomGate.ts';
+import { TransmittedEnd } from './transmittedEnd.ts';
 import type { TrajectoryHistory } from './history.ts';
 import { PHASE_STRIDE, TRAPEZOID_MAX_PHASES, writeTrapezoid } from '../plan/phases.ts';
 import type { QueueEventType, QueueView } from './queueView.ts';
@@ -116,22 +117,8 @@ export class TrajectoryQueue implements QueueView {
   private nextMoveId = 1;
   /** End of the path as appended so far (mutated in place). */
   private readonly tail: PathTail;
-  /** End of the last transmitted segment: author µs, and whether the machine is still moving there. */
-  private lockedEnd_us = -Infinity;
-  private lockedExit2 = 0;
-  /**
-   * The path's tail at the end of the transmitted path (tailAfter the last transmitted
-   * segment, copied): where an edit of the first untransmitted move starts again, as
-   * the last transmitted segment may no longer be held. Unknown before anything is
-   * transmitted and after a restart (the untransmitted path then starts from rest).
-   */
-  private lockedTailKnown = false;
-  private readonly lockedPosition: number[];
-  private readonly lockedUnit: number[];
-  private lockedHasUnit = false;
-  private lockedCruise2 = 0;
-  /** Event channel values at the end of the transmitted path. */
-  private lockedEventValues: number[];
+  /** Where the transmitted path ends: time, speed, event values and the path's tail there. */
+  private readonly transmitted: TransmittedEnd;
   private listeners: QueueListener[] = [];
   /** Producers waiting for room, oldest first, and slots promised to woken ones. */
   private readonly gate = new RoomGate();
@@ -148,15 +135,13 @@ export class TrajectoryQueue implements QueueView {
     this.capacity = config.queueCapacity;
     const position = initialPosition ? [...initialPosition] : new Array<number>(config.motionAxes.length).fill(0);
     this.tail = { position, unit: null, cruise2: 0 };
-    this.lockedEventValues = new Array<number>(config.eventChannels.length).fill(0);
+    this.transmitted = new TransmittedEnd(config.motionAxes.length, config.eventChannels.length);
     this.planner = new LookaheadPlanner(this.capacity, (offset, entry2, exit2) => this.onPlanned(offset, entry2, exit2));
     const axes = config.motionAxes.length;
     this.pending = new PendingSegments(axes);
     this.columnar = !hasNonlinearTransform(config);
     this.unitBuffers = [new Array<number>(axes).fill(0), new Array<number>(axes).fill(0)];
     const zeros = () => new Array<number>(axes).fill(0);
-    this.lockedPosition = zeros();
-    this.lockedUnit = zeros();
     this.front = { start: zeros(), end: zeros(), unit: zeros(), events: [], actuatorStart: [], actuatorEnd: null, length: 0, accel: 0, cruise2: 0 };
     this.lineLimits = new LineLimits(config.limits);
   }
@@ -212,12 +197,12 @@ export class TrajectoryQueue implements QueueView {
 
   /** Author µs at which the transmitted path ends. −∞ before anything is transmitted. */
   get transmittedEnd_us(): number {
-    return this.lockedEnd_us;
+    return this.transmitted.end_us;
   }
 
   /** Whether the machine will still be moving at the end of the transmitted path. */
   get transmittedEndsMoving(): boolean {
-    return this.lockedExit2 > 0;
+    return this.transmitted.exit2 > 0;
   }
 
   /** A live segment by id (ids are unique, but pieces of a split segment are numbered after it). */
@@ -558,9 +543,7 @@ export class TrajectoryQueue implements QueueView {
     const wasPlanned = this.reopenPlanFrom(index, true);
     // The tail before the first segment removed: the untransmitted one before it, else the transmitted path's end.
     if (index > this.live.length - this.untransmitted) tailAfter(this.live[index - 1], this.tail);
-    else if (this.lockedTailKnown) {
-      Object.assign(this.tail, { position: [...this.lockedPosition], unit: this.lockedHasUnit ? [...this.lockedUnit] : null, cruise2: this.lockedCruise2 });
-    } else Object.assign(this.tail, { position: removed[0].start, unit: null, cruise2: 0 });
+    else if (!this.transmitted.restoreTail(this.tail)) Object.assign(this.tail, { position: removed[0].start, unit: null, cruise2: 0 });
 
     const added: Segment[] = [];
     const receipt = replacement ? this.enqueue(replacement, this.nextMoveId++, added) : undefined;
@@ -641,17 +624,16 @@ export class TrajectoryQueue implements QueueView {
     // One fewer untransmitted first: blocks that lockFront() finalises are reported by offset from the new front.
     this.untransmitted--;
     seg.exit2 = this.planner.lockFront();
-    seg.startTime_us = this.nextStart_us(earliestStart_us);
+    const end = this.transmitted;
+    seg.startTime_us = end.nextStart_us(earliestStart_us);
     seg.state = 'transmitted';
-    this.lockedEnd_us = seg.endTime_us;
-    this.lockedExit2 = seg.exit2;
-    seg.eventsAtStart = this.lockedEventValues;
+    seg.eventsAtStart = end.eventValues;
     if (tracks.length > 0) {
-      const values = [...this.lockedEventValues];
+      const values = [...end.eventValues];
       for (const t of tracks) values[t.channel] = t.values[t.values.length - 1];
-      this.lockedEventValues = values;
+      end.eventValues = values;
     }
-    this.setLockedTail(seg.end, seg.isDwell ? null : seg.unit, seg.isDwell ? 0 : seg.cruise2);
+    end.lock(seg.endTime_us, seg.exit2, seg.end, seg.isDwell ? null : seg.unit, seg.isDwell ? 0 : seg.cruise2);
     this.history?.push(seg);
     if (this.listeners.length > 0) this.emit('transmitted', [seg]);
     this.flushPlanned();
@@ -672,7 +654,8 @@ export class TrajectoryQueue implements QueueView {
     if (this.untransmitted > 0 || this.pending.size === 0 || this.listeners.length > 0) return this.executeObjectFront(earliestStart_us);
     const f = this.pending.readFront(this.front);
     if (f.events.length > 0) return this.executeObjectFront(earliestStart_us);
-    const start_us = this.nextStart_us(earliestStart_us);
+    const end = this.transmitted;
+    const start_us = end.nextStart_us(earliestStart_us);
     // Whatever was transmitted ends by start_us (the transmitted path's end, or earlier).
     if (this.head < this.live.length) this.retireUntil(start_us);
     // As timeFront() and transmitNext(): the front speed (a final plan's entry is the front speed too); the exit is lockFront()'s.
@@ -684,14 +667,12 @@ export class TrajectoryQueue implements QueueView {
     if (this.history) {
       const a0 = f.actuatorStart;
       const rate = a0.length > 0 ? actuatorRate(a0, f.actuatorEnd as number[], f.length) : a0;
-      duration_s = this.history.pushTrapezoid(start_us, f.length, entry2, exit2, f.cruise2, f.accel, f.start, f.unit, a0, rate, this.lockedEventValues);
+      duration_s = this.history.pushTrapezoid(start_us, f.length, entry2, exit2, f.cruise2, f.accel, f.start, f.unit, a0, rate, end.eventValues);
     } else {
       const last = (writeTrapezoid(this.timingBuffer, 0, f.length, entry2, exit2, f.cruise2, f.accel) - 1) * PHASE_STRIDE;
       duration_s = this.timingBuffer[last] + this.timingBuffer[last + 1];
     }
-    this.lockedEnd_us = start_us + duration_s * 1e6;
-    this.lockedExit2 = exit2;
-    this.setLockedTail(f.end, f.unit, f.cruise2);
+    end.lock(start_us + duration_s * 1e6, exit2, f.end, f.unit, f.cruise2);
     // Nothing before it is held any more (all ran), so live holds no segment out of path order.
     if (this.head === this.live.length && this.head > 0) {
       this.live.length = 0;
@@ -708,15 +689,6 @@ export class TrajectoryQueue implements QueueView {
     if (seg === undefined) return -1;
     this.retireUntil(seg.endTime_us);
     return seg.duration_s;
-  }
-
-  /** Records the tail at the end of the transmitted path (copies, so later appends and locks cannot change it). */
-  private setLockedTail(end: readonly number[], unit: readonly number[] | null, cruise2: number): void {
-    for (let i = 0; i < end.length; i++) this.lockedPosition[i] = end[i];
-    this.lockedHasUnit = unit !== null;
-    if (unit !== null) for (let i = 0; i < unit.length; i++) this.lockedUnit[i] = unit[i];
-    this.lockedCruise2 = cruise2;
-    this.lockedTailKnown = true;
   }
 
   /**
@@ -741,12 +713,12 @@ export class TrajectoryQueue implements QueueView {
 
   /** Author µs at which the next transmitted segment would start, given the earliest start allowed. */
   nextStart_us(earliestStart_us: number): number {
-    return this.lockedExit2 > 0 ? this.lockedEnd_us : Math.max(earliestStart_us, this.lockedEnd_us);
+    return this.transmitted.nextStart_us(earliestStart_us);
   }
 
   /** Squared speed (mm²/s²) at which the transmitted path ends. */
   get transmittedExit2(): number {
-    return this.lockedExit2;
+    return this.transmitted.exit2;
   }
 
   /**
@@ -800,7 +772,7 @@ export class TrajectoryQueue implements QueueView {
     const dropped = this.live.slice(first).filter((seg) => !keptSet.has(seg));
     // Event values where the path resumes: as the stopped segment began (its own
     // changes are sent again with its remainder), else at the transmitted path's end.
-    const events = stop.segment.eventsAtStart ? [...stop.segment.eventsAtStart] : [...this.lockedEventValues];
+    const events = stop.segment.eventsAtStart ? [...stop.segment.eventsAtStart] : [...this.transmitted.eventValues];
 
     const fresh: Segment[] = [];
     if (rejoinFrom) fresh.push(rejoinSegment(this.config, rejoinFrom, stop, this.nextSegmentId++));
@@ -822,9 +794,7 @@ export class TrajectoryQueue implements QueueView {
     this.head = 0;
     this.untransmitted = this.live.length;
     for (const seg of this.live) this.planner.appendBlock(seg);
-    this.lockedExit2 = 0;
-    this.lockedTailKnown = false;
-    this.lockedEventValues = events;
+    this.transmitted.restart(events);
     if (this.live.length === 0) Object.assign(this.tail, { position: pointPosition(stop), unit: null, cruise2: 0 });
     this.emit('removed', dropped);
     this.emit('replanned', kept);
