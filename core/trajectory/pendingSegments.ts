@@ -33,11 +33,17 @@ import { ValidatedMove } from './validatedMove.ts';
 const INITIAL_CAPACITY = 1024;
 
 /**
- * Where the store finds the final plans of the segments it holds (the lookahead
- * planner, plan/lookahead.ts): by offset from the planner's front block, which is
- * the store's oldest segment plus the object segments held before it.
+ * Where the store finds what the planner holds of the segments it holds (the
+ * lookahead planner, plan/lookahead.ts): their inputs (length, acceleration limit,
+ * entry cap, as the queue appended them) and final plans, by offset from the
+ * planner's front block, which is the store's oldest segment plus the object
+ * segments held before it. Kept there only, not copied here too: at a deep
+ * lookahead (thousands of segments) every column costs cache.
  */
-export interface FinalPlans {
+export interface PlannerBlocks {
+  lengthAt(offset: number): number;
+  accelAt(offset: number): number;
+  maxEntry2At(offset: number): number;
   isFinal(offset: number): boolean;
   finalEntry2(offset: number): number;
   finalExit2(offset: number): number;
@@ -68,10 +74,7 @@ export class PendingSegments {
   private count = 0;
   private ids: Columns = new Float64Array(INITIAL_CAPACITY);
   private moveIds: Columns = new Float64Array(INITIAL_CAPACITY);
-  private lengths: Columns = new Float64Array(INITIAL_CAPACITY);
-  private accels: Columns = new Float64Array(INITIAL_CAPACITY);
   private cruise2s: Columns = new Float64Array(INITIAL_CAPACITY);
-  private maxEntry2s: Columns = new Float64Array(INITIAL_CAPACITY);
   /** The move's caps: mm/s and mm/s² (Infinity for the machine's limits). */
   private maxVelocities: Columns = new Float64Array(INITIAL_CAPACITY);
   private maxAccelerations: Columns = new Float64Array(INITIAL_CAPACITY);
@@ -98,9 +101,9 @@ export class PendingSegments {
   /**
    * Appends a single-segment linear move's segment at the end of the path: its id,
    * its move (id and validated move), where it starts and its unit direction (both
-   * copied), and its planner inputs as the queue computed them at the tail. The
-   * actuators at its start are kept by reference (the shared empty array without
-   * transforms).
+   * copied), and its cruise cap; its other planner inputs (length, acceleration,
+   * entry cap) are the planner's block, appended with it. The actuators at its start
+   * are kept by reference (the shared empty array without transforms).
    */
   push(
     id: number,
@@ -108,10 +111,7 @@ export class PendingSegments {
     move: ValidatedMove,
     start: readonly number[],
     unit: readonly number[],
-    length: number,
-    accel: number,
     cruise2: number,
-    maxEntry2: number,
     actuatorStart: number[],
   ): void {
     if (this.count > this.mask) this.grow();
@@ -119,10 +119,7 @@ export class PendingSegments {
     this.count++;
     this.ids[s] = id;
     this.moveIds[s] = moveId;
-    this.lengths[s] = length;
-    this.accels[s] = accel;
     this.cruise2s[s] = cruise2;
-    this.maxEntry2s[s] = maxEntry2;
     this.maxVelocities[s] = move.maxVelocity;
     this.maxAccelerations[s] = move.maxAcceleration;
     const a = this.axes;
@@ -143,15 +140,19 @@ export class PendingSegments {
    * its plan is final in `plans`, where it is the block `offset` places after the
    * front.
    */
-  takeFront(plans: FinalPlans, offset: number): Segment {
+  takeFront(plans: PlannerBlocks, offset: number): Segment {
     if (this.count === 0) throw new Error('PendingSegments.takeFront: empty');
     const seg = this.segmentAt(this.head, plans, offset);
     this.dropFront();
     return seg;
   }
 
-  /** Copies the oldest segment's fields into `out` (its start and unit in place), without making an object. */
-  readFront(out: PendingFront): PendingFront {
+  /**
+   * Copies the oldest segment's fields into `out` (its start and unit in place),
+   * without making an object; it must be the front block of `blocks` (no object
+   * segment held before it), which gives its length and acceleration.
+   */
+  readFront(out: PendingFront, blocks: PlannerBlocks): PendingFront {
     if (this.count === 0) throw new Error('PendingSegments.readFront: empty');
     const s = this.head;
     const a = this.axes;
@@ -163,8 +164,8 @@ export class PendingSegments {
     out.events = this.events[s] as readonly ResolvedEventSpec[];
     out.actuatorStart = this.actuatorStarts[s] as number[];
     out.actuatorEnd = this.actuatorEnds[s] as number[] | null;
-    out.length = this.lengths[s];
-    out.accel = this.accels[s];
+    out.length = blocks.lengthAt(0);
+    out.accel = blocks.accelAt(0);
     out.cruise2 = this.cruise2s[s];
     return out;
   }
@@ -178,7 +179,7 @@ export class PendingSegments {
   }
 
   /** Removes every segment and returns them as Segments, in path order; the oldest is the block `offset` places after the front of `plans`. */
-  takeAll(plans: FinalPlans, offset: number): Segment[] {
+  takeAll(plans: PlannerBlocks, offset: number): Segment[] {
     const out = new Array<Segment>(this.count);
     for (let i = 0; i < out.length; i++) {
       const s = (this.head + i) & this.mask;
@@ -191,7 +192,7 @@ export class PendingSegments {
   }
 
   /** The Segment of slot s, as segmentsForMove (moves.ts) would have made it, with its plan if final (block `offset` of `plans`). */
-  private segmentAt(s: number, plans: FinalPlans, offset: number): Segment {
+  private segmentAt(s: number, plans: PlannerBlocks, offset: number): Segment {
     const a = this.axes;
     const o = s * a;
     const start = Array.from(this.starts.subarray(o, o + a));
@@ -199,14 +200,14 @@ export class PendingSegments {
     const unit = Array.from(this.units.subarray(o, o + a));
     const actuatorEnd = this.actuatorEnds[s] as number[] | null;
     const source = new ValidatedMove(end, this.maxVelocities[s], this.events[s] as ResolvedEventSpec[], null, this.maxAccelerations[s], actuatorEnd);
-    const length = this.lengths[s];
+    const length = plans.lengthAt(offset);
     const seg = new Segment(this.ids[s], this.moveIds[s], start, end, unit, length, 0, source);
     const a0 = this.actuatorStarts[s] as number[];
     seg.actuatorStart = a0;
     seg.actuatorRate = a0.length > 0 ? actuatorRate(a0, actuatorEnd as number[], length) : a0;
-    seg.accel = this.accels[s];
+    seg.accel = plans.accelAt(offset);
     seg.cruise2 = this.cruise2s[s];
-    seg.maxEntry2 = this.maxEntry2s[s];
+    seg.maxEntry2 = plans.maxEntry2At(offset);
     if (plans.isFinal(offset)) {
       seg.entry2 = plans.finalEntry2(offset);
       seg.exit2 = plans.finalExit2(offset);
@@ -243,10 +244,7 @@ export class PendingSegments {
     const a = this.axes;
     this.ids = order(this.ids, 1, f64);
     this.moveIds = order(this.moveIds, 1, f64);
-    this.lengths = order(this.lengths, 1, f64);
-    this.accels = order(this.accels, 1, f64);
     this.cruise2s = order(this.cruise2s, 1, f64);
-    this.maxEntry2s = order(this.maxEntry2s, 1, f64);
     this.maxVelocities = order(this.maxVelocities, 1, f64);
     this.maxAccelerations = order(this.maxAccelerations, 1, f64);
     this.starts = order(this.starts, a, f64);

@@ -350,7 +350,7 @@ export class TrajectoryQueue implements QueueView {
     const accel = limits.accel(move.maxAcceleration, unit);
     const maxEntry2 = limits.entryCap2(tail.unit, tail.cruise2, unit, cruise2);
     const id = this.nextSegmentId++;
-    this.pending.push(id, moveId, move, tail.position, unit, length, accel, cruise2, maxEntry2, actuatorPosition(this.config.transforms, tail.position));
+    this.pending.push(id, moveId, move, tail.position, unit, cruise2, actuatorPosition(this.config.transforms, tail.position));
     this.planner.append(length, accel, maxEntry2);
     tail.position = move.end;
     tail.unit = unit;
@@ -652,7 +652,7 @@ export class TrajectoryQueue implements QueueView {
    */
   executeFrontNow(earliestStart_us: number): number {
     if (this.untransmitted > 0 || this.pending.size === 0 || this.listeners.length > 0) return this.executeObjectFront(earliestStart_us);
-    const f = this.pending.readFront(this.front);
+    const f = this.pending.readFront(this.front, this.planner);
     if (f.events.length > 0) return this.executeObjectFront(earliestStart_us);
     const end = this.transmitted;
     const start_us = end.nextStart_us(earliestStart_us);
