@@ -16,11 +16,17 @@
  *    second of wall time, the median over RUNS timed runs after WARMUP runs;
  *  - coldSegmentsPerSecond: the same for the very first run on that path (a fresh
  *    MAXL, code not yet optimised for its data), not part of the median;
+ *  - cpuSegmentsPerSecond: segments per second of this process's CPU time (user +
+ *    system, all its threads: the garbage collector's too), the median over the
+ *    same runs. On a busy machine (the bench shares two cores with other work) the
+ *    wall-time figure falls with the load; this one counts only the time the
+ *    process ran, so it compares trees measured at different loads better. The
+ *    targets are set on the wall-time figure of a quiet run;
  *  - plannedDuration_s: the duration of the plan, s (the sum of the segments' durations);
  *  - durationRatio: incremental plannedDuration_s / planPath's (1 = the queue's
  *    lookahead found the time-optimal plan).
- * Top level: segmentsPerSecond and coldSegmentsPerSecond are the worst path's
- * incremental rates; worstDurationRatio the largest durationRatio;
+ * Top level: segmentsPerSecond, coldSegmentsPerSecond and cpuSegmentsPerSecond are
+ * the worst path's incremental rates; worstDurationRatio the largest durationRatio;
  * worstPlanPathSpeedup the smallest planPath rate / incremental rate.
  *
  * Options: `--path NAME[,NAME…]` plans only the paths named (spiral, raster,
@@ -52,6 +58,8 @@ function selectedPaths(): BenchPath[] {
 
 interface Run {
   seconds: number;
+  /** s of the process's CPU time (user + system) during the run. */
+  cpuSeconds: number;
   plannedDuration_s: number;
   segments: number;
 }
@@ -71,6 +79,7 @@ async function incremental(maxl: ReturnType<typeof machineFor>, path: BenchPath)
   await maxl.addSegmentToQueue({ endPosition: path.start });
   new DryRun(queueOf(maxl)).finish();
   const dry = new DryRun(queueOf(maxl));
+  const c0 = process.cpuUsage();
   const t0 = performance.now();
   for (const p of path.points) {
     await maxl.addSegmentToQueue({ endPosition: p });
@@ -78,15 +87,21 @@ async function incremental(maxl: ReturnType<typeof machineFor>, path: BenchPath)
   }
   dry.finish();
   const seconds = (performance.now() - t0) / 1000;
-  return { seconds, plannedDuration_s: dry.duration_s, segments: dry.segments };
+  return { seconds, cpuSeconds: cpuSecondsSince(c0), plannedDuration_s: dry.duration_s, segments: dry.segments };
 }
 
 function batch(path: BenchPath): Run {
   const moves = path.points.map((end) => ({ end }));
+  const c0 = process.cpuUsage();
   const t0 = performance.now();
   const plan = planPath(path.start, moves, BENCH_LIMITS);
   const seconds = (performance.now() - t0) / 1000;
-  return { seconds, plannedDuration_s: plan.duration, segments: plan.segmentCount };
+  return { seconds, cpuSeconds: cpuSecondsSince(c0), plannedDuration_s: plan.duration, segments: plan.segmentCount };
+}
+
+function cpuSecondsSince(start: NodeJS.CpuUsage): number {
+  const d = process.cpuUsage(start);
+  return (d.user + d.system) / 1e6;
 }
 
 function median(xs: number[]): number {
@@ -95,10 +110,12 @@ function median(xs: number[]): number {
 }
 
 const rate = (r: Run) => r.segments / r.seconds;
+const cpuRate = (r: Run) => r.segments / r.cpuSeconds;
 
 const results: Record<string, unknown> = {};
 let worst = Infinity;
 let worstCold = Infinity;
+let worstCpu = Infinity;
 let worstDurationRatio = 0;
 let worstPlanPathSpeedup = Infinity;
 for (const path of selectedPaths()) {
@@ -114,25 +131,38 @@ for (const path of selectedPaths()) {
   for (let r = 0; r < RUNS; r++) bat.push(batch(path));
   const incRate = median(inc.map(rate));
   const batRate = median(bat.map(rate));
+  const incCpuRate = median(inc.map(cpuRate));
   const durationRatio = inc[0].plannedDuration_s / bat[0].plannedDuration_s;
   worst = Math.min(worst, incRate);
   worstCold = Math.min(worstCold, rate(incCold));
+  worstCpu = Math.min(worstCpu, incCpuRate);
   worstDurationRatio = Math.max(worstDurationRatio, durationRatio);
   worstPlanPathSpeedup = Math.min(worstPlanPathSpeedup, batRate / incRate);
   results[path.name] = {
     describe: path.describe,
     segments: inc[0].segments,
-    incremental: { segmentsPerSecond: Math.round(incRate), coldSegmentsPerSecond: Math.round(rate(incCold)), plannedDuration_s: +inc[0].plannedDuration_s.toFixed(4) },
-    planPath: { segmentsPerSecond: Math.round(batRate), coldSegmentsPerSecond: Math.round(rate(batCold)), plannedDuration_s: +bat[0].plannedDuration_s.toFixed(4) },
+    incremental: {
+      segmentsPerSecond: Math.round(incRate),
+      coldSegmentsPerSecond: Math.round(rate(incCold)),
+      cpuSegmentsPerSecond: Math.round(incCpuRate),
+      plannedDuration_s: +inc[0].plannedDuration_s.toFixed(4),
+    },
+    planPath: {
+      segmentsPerSecond: Math.round(batRate),
+      coldSegmentsPerSecond: Math.round(rate(batCold)),
+      cpuSegmentsPerSecond: Math.round(median(bat.map(cpuRate))),
+      plannedDuration_s: +bat[0].plannedDuration_s.toFixed(4),
+    },
     durationRatio: +durationRatio.toFixed(7),
   };
-  console.error(`${path.name}: incremental ${Math.round(incRate)} seg/s (cold ${Math.round(rate(incCold))}), planPath ${Math.round(batRate)} seg/s, duration ratio ${durationRatio.toFixed(7)}`);
+  console.error(`${path.name}: incremental ${Math.round(incRate)} seg/s (cold ${Math.round(rate(incCold))}, per CPU second ${Math.round(incCpuRate)}), planPath ${Math.round(batRate)} seg/s, duration ratio ${durationRatio.toFixed(7)}`);
 }
 console.log(
   JSON.stringify({
     bench: 'planner',
     segmentsPerSecond: Math.round(worst),
     coldSegmentsPerSecond: Math.round(worstCold),
+    cpuSegmentsPerSecond: Math.round(worstCpu),
     target: 3_000_000,
     worstDurationRatio: +worstDurationRatio.toFixed(7),
     durationRatioTarget: 1.000001,

@@ -30,6 +30,11 @@ import { boundsAnAxis, projectLimit, type ResolvedLimits } from '../config/limit
 
 /** Max junction speed² (mm²/s²) between unit directions uIn and uOut. Infinity for a straight line. */
 export function junctionSpeed2(uIn: readonly number[], uOut: readonly number[], limits: ResolvedLimits): number {
+  return cornerSpeed2(uIn, uOut, limits, boundsAnAxis(limits.axisMaxAccel));
+}
+
+/** junctionSpeed2 given whether any axis has an acceleration limit of its own (boundsAnAxis(limits.axisMaxAccel)), for callers that know it once. */
+export function cornerSpeed2(uIn: readonly number[], uOut: readonly number[], limits: ResolvedLimits, accelPerAxis: boolean): number {
   let sum2 = 0;
   let diff2 = 0;
   for (let i = 0; i < uIn.length; i++) {
@@ -42,7 +47,7 @@ export function junctionSpeed2(uIn: readonly number[], uOut: readonly number[], 
   const cosHalf = Math.sqrt(diff2) / 2;
   if (cosHalf === 0) return Infinity; // straight on
   if (sinHalf === 0) return 0; // full reversal
-  const accel = boundsAnAxis(limits.axisMaxAccel)
+  const accel = accelPerAxis
     ? projectLimit(limits.maxAccel, limits.axisMaxAccel, changeDirection(uIn, uOut, cosHalf))
     : limits.maxAccel; // a bound on |a| alone is the same in every direction
   return (accel * limits.junctionDeviation * sinHalf * (1 + sinHalf)) / (cosHalf * cosHalf);

@@ -163,6 +163,36 @@ export class LookaheadPlanner {
     return this.plannedCount === 0;
   }
 
+  /** Whether the plan of the block `offset` places after the front (0 = the front) is final. */
+  isFinal(offset: number): boolean {
+    return offset < this.plannedCount;
+  }
+
+  /** The final entry speed² of the block `offset` places after the front; meaningful only while isFinal(offset). */
+  finalEntry2(offset: number): number {
+    return this.entry2s[(this.first + offset) & this.mask];
+  }
+
+  /** The final exit speed² of the block `offset` places after the front; meaningful only while isFinal(offset). */
+  finalExit2(offset: number): number {
+    return this.exit2s[(this.first + offset) & this.mask];
+  }
+
+  /** The length (mm) given for the block `offset` places after the front. */
+  lengthAt(offset: number): number {
+    return this.lengths[(this.first + offset) & this.mask];
+  }
+
+  /** The acceleration limit (mm/s²) given for the block `offset` places after the front. */
+  accelAt(offset: number): number {
+    return this.accels[(this.first + offset) & this.mask];
+  }
+
+  /** The entry cap (mm²/s²) given for the block `offset` places after the front. */
+  maxEntry2At(offset: number): number {
+    return this.maxEntry2s[(this.first + offset) & this.mask];
+  }
+
   /** Squared speed at which the front block (or the next block appended, if none) starts. */
   get frontSpeed2(): number {
     return this.frontEntry2;

@@ -11,7 +11,7 @@
  * with A motion axes, B actuator axes and E event channels. Event changes inside a
  * segment (rare: only where a move sets channels) are kept beside it, by record.
  */
-import { PHASE_STRIDE, type Timing } from '../plan/phases.ts';
+import { PHASE_STRIDE, writeTrapezoid, type Timing } from '../plan/phases.ts';
 import type { EventTrack } from './events.ts';
 import type { Segment } from './segment.ts';
 import { sampleTimeline, segmentIndexAt, type TimedSegment, type TrajectorySample } from './tracks.ts';
@@ -126,23 +126,72 @@ export class TrajectoryHistory {
     eventTracks: readonly EventTrack[] | null,
   ): void {
     if (timingLength > MAX_PHASES * PHASE_STRIDE) throw new Error(`history: a segment of ${timingLength / PHASE_STRIDE} phases (at most ${MAX_PHASES})`);
+    const o = this.nextRecord(eventTracks);
+    copyPhases(this.data, o + HEADER, timing, timingLength);
+    this.writeFields(o, seg.startTime_us, seg.duration_s, seg.length, timingLength, start, unit, seg.actuatorStart, seg.actuatorRate, seg.eventsAtStart);
+  }
+
+  /**
+   * Records a transmitted line segment timed by the trapezoid of plan/phases.ts, its
+   * phases written by writeTrapezoid straight into the ring (a dry run locks a
+   * million segments a second: no copy through a buffer), and returns its duration
+   * (s) as timingDuration() gives it: the last phase's start plus its length.
+   */
+  pushTrapezoid(
+    startTime_us: number,
+    length: number,
+    entry2: number,
+    exit2: number,
+    cruise2: number,
+    accel: number,
+    start: ArrayLike<number>,
+    unit: ArrayLike<number>,
+    actuatorStart: readonly number[],
+    actuatorRate: readonly number[],
+    eventsAtStart: readonly number[] | null,
+  ): number {
+    const o = this.nextRecord(null);
+    const d = this.data;
+    const n = writeTrapezoid(d, o + HEADER, length, entry2, exit2, cruise2, accel) * PHASE_STRIDE;
+    const last = o + HEADER + n - PHASE_STRIDE;
+    const duration_s = d[last] + d[last + 1];
+    this.writeFields(o, startTime_us, duration_s, length, n, start, unit, actuatorStart, actuatorRate, eventsAtStart);
+    return duration_s;
+  }
+
+  /** Takes the next record's slot (dropping the oldest record when the ring is full) and returns its offset in `data`. */
+  private nextRecord(eventTracks: readonly EventTrack[] | null): number {
     const n = this.count++;
     if (n < this.capacity) this.makeRoomFor(n);
     else if (this.events.size > 0) this.events.delete(n - this.capacity); // its slot is reused now
-    const d = this.data;
     const o = this.nextSlot * this.stride;
     this.nextSlot = this.nextSlot + 1 === this.capacity ? 0 : this.nextSlot + 1;
-    d[o] = seg.startTime_us;
-    d[o + 1] = seg.duration_s;
-    d[o + 2] = seg.length;
+    if (eventTracks && eventTracks.length > 0) this.events.set(n, eventTracks);
+    return o;
+  }
+
+  /** Writes a record's fields but its phases, at offset o. */
+  private writeFields(
+    o: number,
+    startTime_us: number,
+    duration_s: number,
+    length: number,
+    timingLength: number,
+    start: ArrayLike<number>,
+    unit: ArrayLike<number>,
+    actuatorStart: readonly number[],
+    actuatorRate: readonly number[],
+    atStart: readonly number[] | null,
+  ): void {
+    const d = this.data;
+    d[o] = startTime_us;
+    d[o + 1] = duration_s;
+    d[o + 2] = length;
     d[o + 3] = timingLength;
-    copyPhases(d, o + HEADER, timing, timingLength);
     let v = o + HEADER + MAX_PHASES * PHASE_STRIDE;
     v = copyPair(d, v, start, unit, this.axes);
-    v = copyPair(d, v, seg.actuatorStart, seg.actuatorRate, this.actuators);
-    const atStart = seg.eventsAtStart;
+    v = copyPair(d, v, actuatorStart, actuatorRate, this.actuators);
     for (let c = 0; c < this.channels; c++) d[v + c] = atStart ? atStart[c] : 0;
-    if (eventTracks && eventTracks.length > 0) this.events.set(n, eventTracks);
   }
 
   /** Grows the ring (doubling, up to capacity) so that it has a slot for record n < capacity. */

@@ -73,9 +73,9 @@ export const TRACK_POSITION_LIMIT_MM = 32_767;
  * non-number is refused before anything is queued; the actuators it returns are
  * kept with the move, so making its last segment does not compute them again.
  */
-function checkTrackRange(config: ResolvedConfig, end: readonly number[]): number[] {
+function checkTrackRange(config: ResolvedConfig, end: readonly number[], motionChecked: boolean): number[] {
   const axes = config.motionAxes;
-  for (let i = 0; i < axes.length; i++) {
+  for (let i = 0; i < axes.length && !motionChecked; i++) {
     if (Math.abs(end[i]) > TRACK_POSITION_LIMIT_MM) {
       throw new MaxlError('MOVE_INVALID', `${axes[i]} = ${end[i]} mm is beyond the ±${TRACK_POSITION_LIMIT_MM} mm a position track can carry`, `endPosition.${axes[i]}`);
     }
@@ -133,6 +133,8 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
   const axes = config.motionAxes;
   const target = move.endPosition;
   let end: number[];
+  // Whether every motion axis is known to be within the soft limits and the track range already.
+  let inRange = false;
   if (Array.isArray(target)) {
     if (target.length !== axes.length) {
       throw new MaxlError(
@@ -141,9 +143,18 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
         'endPosition',
       );
     }
+    // One pass for the common move, every value a number within the soft limits and the
+    // track range (so finite); any other goes through the checks below, in their order.
     end = new Array<number>(axes.length);
+    const { softMin, softMax } = config;
+    inRange = true;
     for (let i = 0; i < axes.length; i++) {
       const v = target[i];
+      if (typeof v === 'number' && v >= softMin[i] && v <= softMax[i] && Math.abs(v) <= TRACK_POSITION_LIMIT_MM) {
+        end[i] = v;
+        continue;
+      }
+      inRange = false;
       // The field name is only built on the error path: this runs once per move.
       end[i] = typeof v === 'number' && Number.isFinite(v) ? v : finite(`endPosition[${i}]`, v);
     }
@@ -157,7 +168,7 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
   } else {
     throw new MaxlError('MOVE_INVALID', 'must be an array of positions or an object of axis positions', 'endPosition');
   }
-  for (let i = 0; i < axes.length; i++) {
+  for (let i = 0; i < axes.length && !inRange; i++) {
     if (end[i] < config.softMin[i] || end[i] > config.softMax[i]) {
       throw new MaxlError(
         'SOFT_LIMIT',
@@ -166,7 +177,7 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
       );
     }
   }
-  const actuatorEnd = checkTrackRange(config, end);
+  const actuatorEnd = checkTrackRange(config, end, inRange);
   let maxVelocity = Infinity;
   if (move.maxVelocity !== undefined) {
     maxVelocity = finite('maxVelocity', move.maxVelocity);

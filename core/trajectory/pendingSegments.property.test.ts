@@ -20,6 +20,7 @@ type Op =
   | { kind: 'dwell'; s: number }
   | { kind: 'again' }
   | { kind: 'take'; n: number }
+  | { kind: 'drain' }
   | { kind: 'read' }
   | { kind: 'replace'; k: number; to: [number, number] }
   | { kind: 'cancel'; k: number };
@@ -36,6 +37,7 @@ const opArb: fc.Arbitrary<Op> = fc.oneof(
   { weight: 1, arbitrary: fc.record({ kind: fc.constant('dwell' as const), s: fc.double({ min: 0, max: 0.05, noNaN: true }) }) },
   { weight: 1, arbitrary: fc.record({ kind: fc.constant('again' as const) }) },
   { weight: 4, arbitrary: fc.record({ kind: fc.constant('take' as const), n: fc.integer({ min: 1, max: 6 }) }) },
+  { weight: 2, arbitrary: fc.record({ kind: fc.constant('drain' as const) }) },
   { weight: 1, arbitrary: fc.record({ kind: fc.constant('read' as const) }) },
   { weight: 1, arbitrary: fc.record({ kind: fc.constant('replace' as const), k: fc.nat(8), to: fc.tuple(coord, coord) }) },
   { weight: 1, arbitrary: fc.record({ kind: fc.constant('cancel' as const), k: fc.nat(8) }) },
@@ -95,6 +97,12 @@ function apply(maxl: Maxl, op: Op): unknown {
         for (let i = 0; i < op.n; i++) durations.push(q.executeFrontNow(0));
         return durations;
       }
+      case 'drain': {
+        // What a producer loop's executor does after each add: take segments (final ones, past the capacity) until there is room.
+        const dry = new DryRun(q);
+        dry.takeWhileFull();
+        return [dry.segments, dry.duration_s];
+      }
       case 'read':
         return q.segments().map(describeSegment);
       case 'replace':
@@ -126,12 +134,14 @@ function historyOf(maxl: Maxl) {
 describe('the queue keeps untransmitted lines as columns', () => {
   it('and plans, locks, edits and records them exactly as segment objects', () => {
     fc.assert(
-      fc.property(fc.boolean(), fc.array(opArb, { minLength: 1, maxLength: 60 }), (corexy, ops) => {
+      // A small queue capacity makes the lookahead hold segments past it while the front is not final, and drains lock only final ones.
+      fc.property(fc.boolean(), fc.option(fc.integer({ min: 1, max: 6 })), fc.array(opArb, { minLength: 1, maxLength: 60 }), (corexy, capacity, ops) => {
         const config: MaxlConfig = {
           motionAxes: ['x', 'y'],
           eventChannels: ['pen'],
           limits: LIMITS,
           transforms: corexy ? [{ type: 'corexy', from: ['x', 'y'], to: ['a', 'b'] }] : [],
+          ...(capacity === null ? {} : { queueCapacity: capacity }),
         };
         const objects = machine(config, true);
         const columns = machine(config, false);

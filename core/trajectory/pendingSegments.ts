@@ -32,21 +32,21 @@ import { ValidatedMove } from './validatedMove.ts';
 
 const INITIAL_CAPACITY = 1024;
 
-/** A single-segment linear move's inputs, as the queue computed them at the tail. */
-export interface PendingLine {
-  id: number;
-  moveId: number;
-  source: ValidatedMove;
-  /** The segment's start (motion axes); copied. */
-  start: readonly number[];
-  /** Unit direction, motion axes; copied. */
-  unit: readonly number[];
-  length: number;
-  accel: number;
-  cruise2: number;
-  maxEntry2: number;
-  /** Actuators at the start (kept by reference; the shared empty array without transforms). */
-  actuatorStart: number[];
+/**
+ * Where the store finds what the planner holds of the segments it holds (the
+ * lookahead planner, plan/lookahead.ts): their inputs (length, acceleration limit,
+ * entry cap, as the queue appended them) and final plans, by offset from the
+ * planner's front block, which is the store's oldest segment plus the object
+ * segments held before it. Kept there only, not copied here too: at a deep
+ * lookahead (thousands of segments) every column costs cache.
+ */
+export interface PlannerBlocks {
+  lengthAt(offset: number): number;
+  accelAt(offset: number): number;
+  maxEntry2At(offset: number): number;
+  isFinal(offset: number): boolean;
+  finalEntry2(offset: number): number;
+  finalExit2(offset: number): number;
 }
 
 /** The oldest segment's fields, as readFront() copies them into an object its caller reuses. */
@@ -62,9 +62,6 @@ export interface PendingFront {
   length: number;
   accel: number;
   cruise2: number;
-  /** Whether its plan is final; entry2 is meaningful only then. */
-  planned: boolean;
-  entry2: number;
 }
 
 /** Doubles per slot in the position columns. */
@@ -77,17 +74,10 @@ export class PendingSegments {
   private count = 0;
   private ids: Columns = new Float64Array(INITIAL_CAPACITY);
   private moveIds: Columns = new Float64Array(INITIAL_CAPACITY);
-  private lengths: Columns = new Float64Array(INITIAL_CAPACITY);
-  private accels: Columns = new Float64Array(INITIAL_CAPACITY);
   private cruise2s: Columns = new Float64Array(INITIAL_CAPACITY);
-  private maxEntry2s: Columns = new Float64Array(INITIAL_CAPACITY);
-  private entry2s: Columns = new Float64Array(INITIAL_CAPACITY);
-  private exit2s: Columns = new Float64Array(INITIAL_CAPACITY);
   /** The move's caps: mm/s and mm/s² (Infinity for the machine's limits). */
   private maxVelocities: Columns = new Float64Array(INITIAL_CAPACITY);
   private maxAccelerations: Columns = new Float64Array(INITIAL_CAPACITY);
-  /** 1 once the planner reported the segment's final plan. */
-  private planned = new Uint8Array(INITIAL_CAPACITY);
   /** Start and end positions and unit vectors, `axes` numbers a slot. */
   private starts: Columns;
   private ends: Columns;
@@ -108,53 +98,61 @@ export class PendingSegments {
     return this.count;
   }
 
-  /** Appends a segment at the end of the path, unplanned. */
-  push(line: PendingLine): void {
+  /**
+   * Appends a single-segment linear move's segment at the end of the path: its id,
+   * its move (id and validated move), where it starts and its unit direction (both
+   * copied), and its cruise cap; its other planner inputs (length, acceleration,
+   * entry cap) are the planner's block, appended with it. The actuators at its start
+   * are kept by reference (the shared empty array without transforms).
+   */
+  push(
+    id: number,
+    moveId: number,
+    move: ValidatedMove,
+    start: readonly number[],
+    unit: readonly number[],
+    cruise2: number,
+    actuatorStart: number[],
+  ): void {
     if (this.count > this.mask) this.grow();
     const s = (this.head + this.count) & this.mask;
     this.count++;
-    const move = line.source;
-    this.ids[s] = line.id;
-    this.moveIds[s] = line.moveId;
-    this.lengths[s] = line.length;
-    this.accels[s] = line.accel;
-    this.cruise2s[s] = line.cruise2;
-    this.maxEntry2s[s] = line.maxEntry2;
-    this.entry2s[s] = 0;
-    this.exit2s[s] = 0;
+    this.ids[s] = id;
+    this.moveIds[s] = moveId;
+    this.cruise2s[s] = cruise2;
     this.maxVelocities[s] = move.maxVelocity;
     this.maxAccelerations[s] = move.maxAcceleration;
-    this.planned[s] = 0;
     const a = this.axes;
     const o = s * a;
+    const end = move.end;
     for (let i = 0; i < a; i++) {
-      this.starts[o + i] = line.start[i];
-      this.ends[o + i] = move.end[i];
-      this.units[o + i] = line.unit[i];
+      this.starts[o + i] = start[i];
+      this.ends[o + i] = end[i];
+      this.units[o + i] = unit[i];
     }
     this.events[s] = move.events;
-    this.actuatorStarts[s] = line.actuatorStart;
+    this.actuatorStarts[s] = actuatorStart;
     this.actuatorEnds[s] = move.actuatorEnd;
   }
 
-  /** Records the final plan of the i-th segment held (0 = the oldest). */
-  setPlanned(i: number, entry2: number, exit2: number): void {
-    const s = (this.head + i) & this.mask;
-    this.entry2s[s] = entry2;
-    this.exit2s[s] = exit2;
-    this.planned[s] = 1;
-  }
-
-  /** Removes the oldest segment and returns it as a Segment (planned and timed if its plan is final). */
-  takeFront(): Segment {
+  /**
+   * Removes the oldest segment and returns it as a Segment, planned and timed if
+   * its plan is final in `plans`, where it is the block `offset` places after the
+   * front.
+   */
+  takeFront(plans: PlannerBlocks, offset: number): Segment {
     if (this.count === 0) throw new Error('PendingSegments.takeFront: empty');
-    const seg = this.segmentAt(this.head);
+    const seg = this.segmentAt(this.head, plans, offset);
     this.dropFront();
     return seg;
   }
 
-  /** Copies the oldest segment's fields into `out` (its start and unit in place), without making an object. */
-  readFront(out: PendingFront): PendingFront {
+  /**
+   * Copies the oldest segment's fields into `out` (its start and unit in place),
+   * without making an object; it must be the front block of `blocks` (no object
+   * segment held before it), which gives its length and acceleration.
+   */
+  readFront(out: PendingFront, blocks: PlannerBlocks): PendingFront {
     if (this.count === 0) throw new Error('PendingSegments.readFront: empty');
     const s = this.head;
     const a = this.axes;
@@ -166,11 +164,9 @@ export class PendingSegments {
     out.events = this.events[s] as readonly ResolvedEventSpec[];
     out.actuatorStart = this.actuatorStarts[s] as number[];
     out.actuatorEnd = this.actuatorEnds[s] as number[] | null;
-    out.length = this.lengths[s];
-    out.accel = this.accels[s];
+    out.length = blocks.lengthAt(0);
+    out.accel = blocks.accelAt(0);
     out.cruise2 = this.cruise2s[s];
-    out.planned = this.planned[s] === 1;
-    out.entry2 = this.entry2s[s];
     return out;
   }
 
@@ -182,12 +178,12 @@ export class PendingSegments {
     this.count--;
   }
 
-  /** Removes every segment and returns them as Segments, in path order. */
-  takeAll(): Segment[] {
+  /** Removes every segment and returns them as Segments, in path order; the oldest is the block `offset` places after the front of `plans`. */
+  takeAll(plans: PlannerBlocks, offset: number): Segment[] {
     const out = new Array<Segment>(this.count);
     for (let i = 0; i < out.length; i++) {
       const s = (this.head + i) & this.mask;
-      out[i] = this.segmentAt(s);
+      out[i] = this.segmentAt(s, plans, offset + i);
       this.release(s);
     }
     this.head = 0;
@@ -195,8 +191,8 @@ export class PendingSegments {
     return out;
   }
 
-  /** The Segment of slot s, as segmentsForMove (moves.ts) would have made it, with its plan. */
-  private segmentAt(s: number): Segment {
+  /** The Segment of slot s, as segmentsForMove (moves.ts) would have made it, with its plan if final (block `offset` of `plans`). */
+  private segmentAt(s: number, plans: PlannerBlocks, offset: number): Segment {
     const a = this.axes;
     const o = s * a;
     const start = Array.from(this.starts.subarray(o, o + a));
@@ -204,17 +200,17 @@ export class PendingSegments {
     const unit = Array.from(this.units.subarray(o, o + a));
     const actuatorEnd = this.actuatorEnds[s] as number[] | null;
     const source = new ValidatedMove(end, this.maxVelocities[s], this.events[s] as ResolvedEventSpec[], null, this.maxAccelerations[s], actuatorEnd);
-    const length = this.lengths[s];
+    const length = plans.lengthAt(offset);
     const seg = new Segment(this.ids[s], this.moveIds[s], start, end, unit, length, 0, source);
     const a0 = this.actuatorStarts[s] as number[];
     seg.actuatorStart = a0;
     seg.actuatorRate = a0.length > 0 ? actuatorRate(a0, actuatorEnd as number[], length) : a0;
-    seg.accel = this.accels[s];
+    seg.accel = plans.accelAt(offset);
     seg.cruise2 = this.cruise2s[s];
-    seg.maxEntry2 = this.maxEntry2s[s];
-    if (this.planned[s] === 1) {
-      seg.entry2 = this.entry2s[s];
-      seg.exit2 = this.exit2s[s];
+    seg.maxEntry2 = plans.maxEntry2At(offset);
+    if (plans.isFinal(offset)) {
+      seg.entry2 = plans.finalEntry2(offset);
+      seg.exit2 = plans.finalExit2(offset);
       seg.state = 'planned';
       seg.time();
     }
@@ -231,7 +227,7 @@ export class PendingSegments {
   /** Doubles the ring, moving the entries to slots 0 … count − 1. */
   private grow(): void {
     const capacity = 2 * (this.mask + 1);
-    const order = <T extends Columns | Uint8Array<ArrayBuffer>>(from: T, stride: number, make: (n: number) => T): T => {
+    const order = <T extends Columns>(from: T, stride: number, make: (n: number) => T): T => {
       const to = make(capacity * stride);
       for (let i = 0; i < this.count; i++) {
         const s = (this.head + i) & this.mask;
@@ -248,15 +244,9 @@ export class PendingSegments {
     const a = this.axes;
     this.ids = order(this.ids, 1, f64);
     this.moveIds = order(this.moveIds, 1, f64);
-    this.lengths = order(this.lengths, 1, f64);
-    this.accels = order(this.accels, 1, f64);
     this.cruise2s = order(this.cruise2s, 1, f64);
-    this.maxEntry2s = order(this.maxEntry2s, 1, f64);
-    this.entry2s = order(this.entry2s, 1, f64);
-    this.exit2s = order(this.exit2s, 1, f64);
     this.maxVelocities = order(this.maxVelocities, 1, f64);
     this.maxAccelerations = order(this.maxAccelerations, 1, f64);
-    this.planned = order(this.planned, 1, (n) => new Uint8Array(n));
     this.starts = order(this.starts, a, f64);
     this.ends = order(this.ends, a, f64);
     this.units = order(this.units, a, f64);

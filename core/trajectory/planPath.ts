@@ -10,8 +10,8 @@
  * caps the segments it is given on that link (moves.ts floorCruise2), so the
  * planned duration is the time the queue will run.
  *
- * It computes each move's planner inputs with the queue's own functions (moves.ts:
- * the same arithmetic, so the same plan to the last bit) but makes no Segment
+ * It computes each move's planner inputs with the queue's own functions (lineLimits.ts,
+ * moves.ts: the same arithmetic, so the same plan to the last bit) but makes no Segment
  * objects: the inputs go straight into the planner's typed-array store, and the
  * result is columnar (plannedPath.ts). One pass validates, plans and times; a bad
  * move throws before anything is returned.
@@ -22,7 +22,8 @@ import { MaxlError } from '../errors.ts';
 import { trapezoidDuration } from '../plan/phases.ts';
 import { LookaheadPlanner } from '../plan/lookahead.ts';
 import { ColumnarPlannedPath, PathColumns, type PlannedPath } from './plannedPath.ts';
-import { dwellAccel, entryCap2, floorCruise2, lineAccel, lineCruise2, validateMove, ZERO_LENGTH_MM, type Move, type ValidatedMove } from './moves.ts';
+import { dwellAccel, floorCruise2, validateMove, ZERO_LENGTH_MM, type Move, type ValidatedMove } from './moves.ts';
+import { LineLimits } from './lineLimits.ts';
 
 export type { PathSample, PlannedPath, PlannedSegment } from './plannedPath.ts';
 
@@ -71,7 +72,7 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
     queueCapacity: Infinity,
   };
   const axisCount = start.length;
-  const resolved = config.limits;
+  const lineLimits = new LineLimits(config.limits);
   const minDuration_s = floor_us * 1e-6;
   const columns = new PathColumns(axisCount, moves.length, start);
   const vertices = columns.vertices;
@@ -110,12 +111,12 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
         continue;
       }
       for (let a = 0; a < axisCount; a++) unit[a] = (end[a] - vertices[row + a]) / total;
-      const cruise2 = floorCruise2(lineCruise2(resolved, move, unit), total, minDuration_s);
-      const accel = lineAccel(resolved, move, unit);
+      const cruise2 = floorCruise2(lineLimits.cruise2(move.maxVelocity, unit), total, minDuration_s);
+      const accel = lineLimits.accel(move.maxAcceleration, unit);
       columns.lengths[n] = total;
       columns.cruise2s[n] = cruise2;
       columns.accels[n] = accel;
-      planner.append(total, accel, entryCap2(resolved, prevUnit, prevCruise2, unit, cruise2, true));
+      planner.append(total, accel, lineLimits.entryCap2(prevUnit, prevCruise2, unit, cruise2));
       const used = unit;
       unit = spare;
       spare = used;

@@ -20,7 +20,7 @@
  * untransmitted path is read or edited as objects (materialize): a deep lookahead
  * then costs no garbage-collector time. docs/architecture.md §3 has the rules.
  */
-import { abortedError, MaxlError } from '../errors.ts';
+import { MaxlError } from '../errors.ts';
 import type { ResolvedConfig } from '../config/types.ts';
 import { LookaheadPlanner } from '../plan/lookahead.ts';
 import { shouldDropSpent } from '../plan/spentPrefix.ts';
@@ -29,11 +29,8 @@ import { actuatorPosition } from '../config/transforms.ts';
 import {
   actuatorRate,
   directionInto,
-  entryCap2,
   floorCruise2,
   hasNonlinearTransform,
-  lineAccel,
-  lineCruise2,
   segmentsForMove,
   tailAfter,
   validateMove,
@@ -42,8 +39,11 @@ import {
   type PathTail,
   type ValidatedMove,
 } from './moves.ts';
-import { PendingSegments, type PendingFront, type PendingLine } from './pendingSegments.ts';
-import type { HistoryRecordFields, TrajectoryHistory } from './history.ts';
+import { PendingSegments, type PendingFront } from './pendingSegments.ts';
+import { LineLimits } from './lineLimits.ts';
+import { RoomGate } from './roomGate.ts';
+import { TransmittedEnd } from './transmittedEnd.ts';
+import type { TrajectoryHistory } from './history.ts';
 import { PHASE_STRIDE, TRAPEZOID_MAX_PHASES, writeTrapezoid } from '../plan/phases.ts';
 import type { QueueEventType, QueueView } from './queueView.ts';
 import { Segment, type SegmentState } from './segment.ts';
@@ -108,8 +108,8 @@ export class TrajectoryQueue implements QueueView {
   private readonly columnar: boolean;
   /** Two unit-vector buffers for columnar appends: the tail's direction is one, the new segment's the other. */
   private readonly unitBuffers: [number[], number[]];
-  /** The columnar append's inputs, reused. */
-  private readonly line: PendingLine;
+  /** The machine's limits as a line's planner inputs need them. */
+  private readonly lineLimits: LineLimits;
   private readonly planner: LookaheadPlanner;
   /** Segments finalised during the current call, reported once it returns. */
   private newlyPlanned: Segment[] = [];
@@ -117,33 +117,17 @@ export class TrajectoryQueue implements QueueView {
   private nextMoveId = 1;
   /** End of the path as appended so far (mutated in place). */
   private readonly tail: PathTail;
-  /** End of the last transmitted segment: author µs, and whether the machine is still moving there. */
-  private lockedEnd_us = -Infinity;
-  private lockedExit2 = 0;
-  /**
-   * The path's tail at the end of the transmitted path (tailAfter the last transmitted
-   * segment, copied): where an edit of the first untransmitted move starts again, as
-   * the last transmitted segment may no longer be held. Unknown before anything is
-   * transmitted and after a restart (the untransmitted path then starts from rest).
-   */
-  private lockedTailKnown = false;
-  private readonly lockedPosition: number[];
-  private readonly lockedUnit: number[];
-  private lockedHasUnit = false;
-  private lockedCruise2 = 0;
-  /** Event channel values at the end of the transmitted path. */
-  private lockedEventValues: number[];
+  /** Where the transmitted path ends: time, speed, event values and the path's tail there. */
+  private readonly transmitted: TransmittedEnd;
   private listeners: QueueListener[] = [];
   /** Producers waiting for room, oldest first, and slots promised to woken ones. */
-  private roomWaiters: Array<() => void> = [];
-  private reserved = 0;
+  private readonly gate = new RoomGate();
 
   /** The author's as-planned history: each segment is recorded as it is locked, before listeners hear of it. */
   private readonly history: TrajectoryHistory | undefined;
-  /** executeFrontNow()'s reused buffers: the front's fields, its packed timing, its history record. */
+  /** executeFrontNow()'s reused buffers: the front's fields, and its packed timing when there is no history to write it into. */
   private readonly front: PendingFront;
   private readonly timingBuffer = new Float64Array(TRAPEZOID_MAX_PHASES * PHASE_STRIDE);
-  private readonly record: HistoryRecordFields = { startTime_us: 0, duration_s: 0, length: 0, actuatorStart: [], actuatorRate: [], eventsAtStart: null };
 
   constructor(config: ResolvedConfig, initialPosition?: number[], history?: TrajectoryHistory) {
     this.config = config;
@@ -151,17 +135,15 @@ export class TrajectoryQueue implements QueueView {
     this.capacity = config.queueCapacity;
     const position = initialPosition ? [...initialPosition] : new Array<number>(config.motionAxes.length).fill(0);
     this.tail = { position, unit: null, cruise2: 0 };
-    this.lockedEventValues = new Array<number>(config.eventChannels.length).fill(0);
+    this.transmitted = new TransmittedEnd(config.motionAxes.length, config.eventChannels.length);
     this.planner = new LookaheadPlanner(this.capacity, (offset, entry2, exit2) => this.onPlanned(offset, entry2, exit2));
     const axes = config.motionAxes.length;
     this.pending = new PendingSegments(axes);
     this.columnar = !hasNonlinearTransform(config);
     this.unitBuffers = [new Array<number>(axes).fill(0), new Array<number>(axes).fill(0)];
     const zeros = () => new Array<number>(axes).fill(0);
-    this.lockedPosition = zeros();
-    this.lockedUnit = zeros();
-    this.front = { start: zeros(), end: zeros(), unit: zeros(), events: [], actuatorStart: [], actuatorEnd: null, length: 0, accel: 0, cruise2: 0, planned: false, entry2: 0 };
-    this.line = { id: 0, moveId: 0, source: null as unknown as ValidatedMove, start: position, unit: this.unitBuffers[0], length: 0, accel: 0, cruise2: 0, maxEntry2: 0, actuatorStart: [] };
+    this.front = { start: zeros(), end: zeros(), unit: zeros(), events: [], actuatorStart: [], actuatorEnd: null, length: 0, accel: 0, cruise2: 0 };
+    this.lineLimits = new LineLimits(config.limits);
   }
 
   /**
@@ -203,8 +185,9 @@ export class TrajectoryQueue implements QueueView {
    */
   hasRoom(): boolean {
     const untransmitted = this.untransmitted + this.pending.size;
-    if (untransmitted + this.reserved < this.capacity) return true;
-    return this.reserved === 0 && this.planner.needsMorePath && untransmitted < MAX_LOOKAHEAD_SEGMENTS;
+    const reserved = this.gate.reserved;
+    if (untransmitted + reserved < this.capacity) return true;
+    return reserved === 0 && this.planner.needsMorePath && untransmitted < MAX_LOOKAHEAD_SEGMENTS;
   }
 
   /** The end of the path as appended so far (mm, motion axes). */
@@ -214,12 +197,12 @@ export class TrajectoryQueue implements QueueView {
 
   /** Author µs at which the transmitted path ends. −∞ before anything is transmitted. */
   get transmittedEnd_us(): number {
-    return this.lockedEnd_us;
+    return this.transmitted.end_us;
   }
 
   /** Whether the machine will still be moving at the end of the transmitted path. */
   get transmittedEndsMoving(): boolean {
-    return this.lockedExit2 > 0;
+    return this.transmitted.exit2 > 0;
   }
 
   /** A live segment by id (ids are unique, but pieces of a split segment are numbered after it). */
@@ -292,30 +275,12 @@ export class TrajectoryQueue implements QueueView {
    * appendValidated(move, true). Waiters are served in the order they came.
    */
   reserveSlot(signal?: AbortSignal): Promise<void> {
-    if (signal?.aborted) return Promise.reject(abortedError(signal, 'the wait for room in the queue'));
-    if (this.hasRoom() && this.roomWaiters.length === 0) {
-      this.reserved++;
-      return Promise.resolve();
-    }
-    if (!signal) return new Promise((resolve) => this.roomWaiters.push(resolve));
-    // An aborted waiter leaves the line at once, so it never takes a slot.
-    return new Promise((resolve, reject) => {
-      const waiter = () => {
-        signal.removeEventListener('abort', onAbort);
-        resolve();
-      };
-      const onAbort = () => {
-        this.roomWaiters = this.roomWaiters.filter((w) => w !== waiter);
-        reject(abortedError(signal, 'the wait for room in the queue'));
-      };
-      signal.addEventListener('abort', onAbort, { once: true });
-      this.roomWaiters.push(waiter);
-    });
+    return this.gate.reserve(!signal?.aborted && this.hasRoom(), signal);
   }
 
   /** Gives back a slot from reserveSlot() that will not be used (its move was abandoned). */
   releaseSlot(): void {
-    this.reserved--;
+    this.gate.release();
     this.wakeWaiters();
   }
 
@@ -324,14 +289,14 @@ export class TrajectoryQueue implements QueueView {
    * reserveSlot(); without one the move is appended whether or not there is room.
    */
   appendValidated(move: ValidatedMove, reserved = false): MoveReceipt {
-    if (reserved) this.reserved--;
+    if (reserved) this.gate.release();
     // The move's id is taken only once its segments exist (a transform may refuse them).
     const receipt = this.enqueue(move, this.nextMoveId, null);
     this.nextMoveId++;
     this.flushPlanned();
     // Past capacity the lookahead lets one producer in at a time: the next may come in if
     // this move left the front still short of the path it needs.
-    if (this.roomWaiters.length > 0) this.wakeWaiters();
+    if (this.gate.waiting > 0) this.wakeWaiters();
     return receipt;
   }
 
@@ -373,7 +338,6 @@ export class TrajectoryQueue implements QueueView {
    */
   private enqueueLine(move: ValidatedMove, moveId: number): MoveReceipt | null {
     const tail = this.tail;
-    const line = this.line;
     const unit = tail.unit === this.unitBuffers[0] ? this.unitBuffers[1] : this.unitBuffers[0];
     const length = directionInto(tail.position, move.end, unit);
     if (length < ZERO_LENGTH_MM) {
@@ -381,30 +345,23 @@ export class TrajectoryQueue implements QueueView {
       this.skippedZeroLength++;
       return { moveId, segmentIds: [], skipped: true };
     }
-    const limits = this.config.limits;
-    const cruise2 = floorCruise2(lineCruise2(limits, move, unit), length, this.minSegmentDuration_s);
-    line.id = this.nextSegmentId++;
-    line.moveId = moveId;
-    line.source = move;
-    line.start = tail.position;
-    line.unit = unit;
-    line.length = length;
-    line.accel = lineAccel(limits, move, unit);
-    line.cruise2 = cruise2;
-    line.maxEntry2 = entryCap2(limits, tail.unit, tail.cruise2, unit, cruise2, true);
-    line.actuatorStart = actuatorPosition(this.config.transforms, tail.position);
-    this.pending.push(line);
-    this.planner.append(length, line.accel, line.maxEntry2);
+    const limits = this.lineLimits;
+    const cruise2 = floorCruise2(limits.cruise2(move.maxVelocity, unit), length, this.minSegmentDuration_s);
+    const accel = limits.accel(move.maxAcceleration, unit);
+    const maxEntry2 = limits.entryCap2(tail.unit, tail.cruise2, unit, cruise2);
+    const id = this.nextSegmentId++;
+    this.pending.push(id, moveId, move, tail.position, unit, cruise2, actuatorPosition(this.config.transforms, tail.position));
+    this.planner.append(length, accel, maxEntry2);
     tail.position = move.end;
     tail.unit = unit;
     tail.cruise2 = cruise2;
-    return { moveId, segmentIds: [line.id], skipped: false };
+    return { moveId, segmentIds: [id], skipped: false };
   }
 
   /** Moves the columnar tail into `live` as objects, so that the untransmitted path is all objects. */
   private materialize(): void {
     if (this.pending.size === 0) return;
-    const segments = this.pending.takeAll();
+    const segments = this.pending.takeAll(this.planner, this.untransmitted);
     for (let i = 0; i < segments.length; i++) this.live.push(segments[i]);
     this.untransmitted += segments.length;
   }
@@ -586,9 +543,7 @@ export class TrajectoryQueue implements QueueView {
     const wasPlanned = this.reopenPlanFrom(index, true);
     // The tail before the first segment removed: the untransmitted one before it, else the transmitted path's end.
     if (index > this.live.length - this.untransmitted) tailAfter(this.live[index - 1], this.tail);
-    else if (this.lockedTailKnown) {
-      Object.assign(this.tail, { position: [...this.lockedPosition], unit: this.lockedHasUnit ? [...this.lockedUnit] : null, cruise2: this.lockedCruise2 });
-    } else Object.assign(this.tail, { position: removed[0].start, unit: null, cruise2: 0 });
+    else if (!this.transmitted.restoreTail(this.tail)) Object.assign(this.tail, { position: removed[0].start, unit: null, cruise2: 0 });
 
     const added: Segment[] = [];
     const receipt = replacement ? this.enqueue(replacement, this.nextMoveId++, added) : undefined;
@@ -669,17 +624,16 @@ export class TrajectoryQueue implements QueueView {
     // One fewer untransmitted first: blocks that lockFront() finalises are reported by offset from the new front.
     this.untransmitted--;
     seg.exit2 = this.planner.lockFront();
-    seg.startTime_us = this.nextStart_us(earliestStart_us);
+    const end = this.transmitted;
+    seg.startTime_us = end.nextStart_us(earliestStart_us);
     seg.state = 'transmitted';
-    this.lockedEnd_us = seg.endTime_us;
-    this.lockedExit2 = seg.exit2;
-    seg.eventsAtStart = this.lockedEventValues;
+    seg.eventsAtStart = end.eventValues;
     if (tracks.length > 0) {
-      const values = [...this.lockedEventValues];
+      const values = [...end.eventValues];
       for (const t of tracks) values[t.channel] = t.values[t.values.length - 1];
-      this.lockedEventValues = values;
+      end.eventValues = values;
     }
-    this.setLockedTail(seg.end, seg.isDwell ? null : seg.unit, seg.isDwell ? 0 : seg.cruise2);
+    end.lock(seg.endTime_us, seg.exit2, seg.end, seg.isDwell ? null : seg.unit, seg.isDwell ? 0 : seg.cruise2);
     this.history?.push(seg);
     if (this.listeners.length > 0) this.emit('transmitted', [seg]);
     this.flushPlanned();
@@ -698,35 +652,31 @@ export class TrajectoryQueue implements QueueView {
    */
   executeFrontNow(earliestStart_us: number): number {
     if (this.untransmitted > 0 || this.pending.size === 0 || this.listeners.length > 0) return this.executeObjectFront(earliestStart_us);
-    const f = this.pending.readFront(this.front);
+    const f = this.pending.readFront(this.front, this.planner);
     if (f.events.length > 0) return this.executeObjectFront(earliestStart_us);
-    const start_us = this.nextStart_us(earliestStart_us);
+    const end = this.transmitted;
+    const start_us = end.nextStart_us(earliestStart_us);
     // Whatever was transmitted ends by start_us (the transmitted path's end, or earlier).
     if (this.head < this.live.length) this.retireUntil(start_us);
-    // As timeFront() and transmitNext(): a final plan's entry, else the front speed; the exit is lockFront()'s.
-    const entry2 = f.planned ? f.entry2 : this.planner.frontSpeed2;
+    // As timeFront() and transmitNext(): the front speed (a final plan's entry is the front speed too); the exit is lockFront()'s.
+    const entry2 = this.planner.frontSpeed2;
     this.pending.dropFront();
     const exit2 = this.planner.lockFront();
-    // Segment.time()'s trapezoid and duration, written to a buffer instead of a new array.
-    const n = writeTrapezoid(this.timingBuffer, 0, f.length, entry2, exit2, f.cruise2, f.accel) * PHASE_STRIDE;
-    const duration_s = n === 0 ? 0 : this.timingBuffer[n - PHASE_STRIDE] + this.timingBuffer[n - PHASE_STRIDE + 1];
-    this.lockedEnd_us = start_us + duration_s * 1e6;
-    this.lockedExit2 = exit2;
-    this.setLockedTail(f.end, f.unit, f.cruise2);
+    // Segment.time()'s trapezoid and duration, written into the history's ring (or a buffer) instead of a new array.
+    let duration_s: number;
+    if (this.history) {
+      const a0 = f.actuatorStart;
+      const rate = a0.length > 0 ? actuatorRate(a0, f.actuatorEnd as number[], f.length) : a0;
+      duration_s = this.history.pushTrapezoid(start_us, f.length, entry2, exit2, f.cruise2, f.accel, f.start, f.unit, a0, rate, end.eventValues);
+    } else {
+      const last = (writeTrapezoid(this.timingBuffer, 0, f.length, entry2, exit2, f.cruise2, f.accel) - 1) * PHASE_STRIDE;
+      duration_s = this.timingBuffer[last] + this.timingBuffer[last + 1];
+    }
+    end.lock(start_us + duration_s * 1e6, exit2, f.end, f.unit, f.cruise2);
     // Nothing before it is held any more (all ran), so live holds no segment out of path order.
     if (this.head === this.live.length && this.head > 0) {
       this.live.length = 0;
       this.head = 0;
-    }
-    if (this.history) {
-      const r = this.record;
-      r.startTime_us = start_us;
-      r.duration_s = duration_s;
-      r.length = f.length;
-      r.actuatorStart = f.actuatorStart;
-      r.actuatorRate = f.actuatorStart.length > 0 ? actuatorRate(f.actuatorStart, f.actuatorEnd as number[], f.length) : f.actuatorStart;
-      r.eventsAtStart = this.lockedEventValues;
-      this.history.pushRecord(r, this.timingBuffer, n, f.start, f.unit, null);
     }
     this.flushPlanned();
     this.wakeWaiters();
@@ -741,15 +691,6 @@ export class TrajectoryQueue implements QueueView {
     return seg.duration_s;
   }
 
-  /** Records the tail at the end of the transmitted path (copies, so later appends and locks cannot change it). */
-  private setLockedTail(end: readonly number[], unit: readonly number[] | null, cruise2: number): void {
-    for (let i = 0; i < end.length; i++) this.lockedPosition[i] = end[i];
-    this.lockedHasUnit = unit !== null;
-    if (unit !== null) for (let i = 0; i < unit.length; i++) this.lockedUnit[i] = unit[i];
-    this.lockedCruise2 = cruise2;
-    this.lockedTailKnown = true;
-  }
-
   /**
    * The first untransmitted segment, timed as transmitNext() would lock it now
    * (its exit speed as the plan stands, if that is not final yet).
@@ -758,7 +699,7 @@ export class TrajectoryQueue implements QueueView {
     if (this.untransmitted === 0) {
       if (this.pending.size === 0) return undefined;
       // The front is columnar: its object is made now, as it is about to be sent.
-      this.live.push(this.pending.takeFront());
+      this.live.push(this.pending.takeFront(this.planner, 0));
       this.untransmitted = 1;
     }
     const next = this.live[this.live.length - this.untransmitted];
@@ -772,12 +713,12 @@ export class TrajectoryQueue implements QueueView {
 
   /** Author µs at which the next transmitted segment would start, given the earliest start allowed. */
   nextStart_us(earliestStart_us: number): number {
-    return this.lockedExit2 > 0 ? this.lockedEnd_us : Math.max(earliestStart_us, this.lockedEnd_us);
+    return this.transmitted.nextStart_us(earliestStart_us);
   }
 
   /** Squared speed (mm²/s²) at which the transmitted path ends. */
   get transmittedExit2(): number {
-    return this.lockedExit2;
+    return this.transmitted.exit2;
   }
 
   /**
@@ -831,7 +772,7 @@ export class TrajectoryQueue implements QueueView {
     const dropped = this.live.slice(first).filter((seg) => !keptSet.has(seg));
     // Event values where the path resumes: as the stopped segment began (its own
     // changes are sent again with its remainder), else at the transmitted path's end.
-    const events = stop.segment.eventsAtStart ? [...stop.segment.eventsAtStart] : [...this.lockedEventValues];
+    const events = stop.segment.eventsAtStart ? [...stop.segment.eventsAtStart] : [...this.transmitted.eventValues];
 
     const fresh: Segment[] = [];
     if (rejoinFrom) fresh.push(rejoinSegment(this.config, rejoinFrom, stop, this.nextSegmentId++));
@@ -853,9 +794,7 @@ export class TrajectoryQueue implements QueueView {
     this.head = 0;
     this.untransmitted = this.live.length;
     for (const seg of this.live) this.planner.appendBlock(seg);
-    this.lockedExit2 = 0;
-    this.lockedTailKnown = false;
-    this.lockedEventValues = events;
+    this.transmitted.restart(events);
     if (this.live.length === 0) Object.assign(this.tail, { position: pointPosition(stop), unit: null, cruise2: 0 });
     this.emit('removed', dropped);
     this.emit('replanned', kept);
@@ -869,11 +808,8 @@ export class TrajectoryQueue implements QueueView {
 
   /** The planner's report of a final plan, by offset from the first untransmitted segment. */
   private onPlanned(offset: number, entry2: number, exit2: number): void {
-    if (offset >= this.untransmitted) {
-      // In the columnar tail: the object, when made, is planned and timed from these.
-      this.pending.setPlanned(offset - this.untransmitted, entry2, exit2);
-      return;
-    }
+    // In the columnar tail: the object, when made, is planned and timed from the planner's final plan.
+    if (offset >= this.untransmitted) return;
     const seg = this.live[this.live.length - this.untransmitted + offset];
     seg.entry2 = entry2;
     seg.exit2 = exit2;
@@ -911,11 +847,7 @@ export class TrajectoryQueue implements QueueView {
   }
 
   private wakeWaiters(): void {
-    while (this.roomWaiters.length > 0 && this.hasRoom()) {
-      const resolve = this.roomWaiters.shift() as () => void;
-      this.reserved++;
-      resolve();
-    }
+    while (this.gate.waiting > 0 && this.hasRoom()) this.gate.admitNext();
   }
 }
 
