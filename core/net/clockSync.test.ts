@@ -162,3 +162,24 @@ describe('ClockSync on a link that corrupts frames', () => {
     for (const m of moves) expect(m).toBeLessThan(15);
   });
 });
+
+describe('ClockSync round trips (Karn’s rule)', () => {
+  it('a resent ping’s exchange serves the fit but not the round trips: its wait for the resend is not the link’s', () => {
+    const rand = seededRandom(9);
+    const dev = (a: number) => 1e6 + a;
+    const karn = new ClockSync();
+    const naive = new ClockSync();
+    for (let a = 0; a < 2e6; a += 4000) {
+      // Every fifth ping was resent 4 ms after its first copy, which the stamp keeps.
+      const resent = (a / 4000) % 5 === 4;
+      const e = exchange(rand, a + (resent ? 4000 : 0), dev, [150, 1250], [250, 500]);
+      karn.add({ ...e, authorSend: a, resent });
+      naive.add({ ...e, authorSend: a });
+    }
+    // Round trips here: up to 1.25 + 2 (the reply's wait, not counted) + 0.5 ms + a USB frame.
+    expect(karn.rttHigh).toBeLessThan(3000);
+    expect(naive.rttHigh).toBeGreaterThan(5000);
+    expect(karn.samples).toBe(naive.samples);
+    expect(karn.clock!.toDeviceExact(2e6)).toBe(naive.clock!.toDeviceExact(2e6));
+  });
+});

@@ -100,6 +100,14 @@ export interface PingStamps {
   pingOnWire_us?: number;
   /** the same for the pong */
   pongOnWire_us?: number;
+  /**
+   * The ping was sent again (its first copy was corrupted, or its ack lost). It is
+   * stamped at its first copy, so its round trip includes the resend's wait: not a
+   * round trip of the link, and kept out of rtt and rttHigh (Karn's rule, as TCP
+   * keeps resent segments out of its RTT). Its exchange still serves the fit: the up
+   * point only looks slow, which the envelopes ignore.
+   */
+  resent?: boolean;
 }
 
 export interface ClockSyncOptions {
@@ -154,8 +162,10 @@ export class ClockSync {
     this.d1.push(d1);
     this.d2.push(d1 + held);
     this.samples++;
-    this.rttRecent.push(rtt);
-    if (this.rttRecent.length > 64) this.rttRecent.shift();
+    if (!stamps.resent) {
+      this.rttRecent.push(rtt);
+      if (this.rttRecent.length > 64) this.rttRecent.shift();
+    }
 
     const oldest = stamps.authorReceive - this.options.window_us;
     let drop = 0;

@@ -78,6 +78,9 @@ export const DEFAULT_SESSION: SessionOptions = {
   window: 8,
 };
 
+/** frameLoss averages over about this many recent transmissions. */
+const LOSS_AVERAGE_FRAMES = 256;
+
 export interface SessionEvents {
   status?(status: MessageOf<'STATUS'>, at_us: number): void;
   samples?(samples: MessageOf<'SAMPLES'>, at_us: number): void;
@@ -142,8 +145,10 @@ export class DeviceSession implements StreamDevice {
     resend: null,
   };
   private pendingHello: { resolve(info: DeviceInfo): void; reject(err: Error): void; hello?: MessageOf<'HELLO'>; readers: ReaderInfo[] } | null = null;
-  /** Pings awaiting their pong: when each was written (author µs), and its frame's length in bytes. */
-  private pings = new Map<number, { at: number; frameBytes: number }>();
+  /** Pings awaiting their pong: when each was written (author µs), its frame's length in bytes, and whether it was sent again. */
+  private pings = new Map<number, { at: number; frameBytes: number; resent: boolean }>();
+  /** The share of recent transmissions that were resends (frameLoss). */
+  private lossAverage = 0;
   private lastHelloRequestAt = -Infinity;
   private burstUntil = -Infinity;
   private openedAt = 0;
@@ -250,6 +255,17 @@ export class DeviceSession implements StreamDevice {
   get oldestUnacked_us(): number {
     const oldest = this.inFlight[0];
     return oldest ? this.scheduler.now() - oldest.firstSentAt : 0;
+  }
+
+  /**
+   * The share of recent frames that had to be sent again (0 on a clean link): an
+   * exponential average over the last ~LOSS_AVERAGE_FRAMES transmissions, each a resend (1)
+   * or a first copy (0). Resends come in go-back-N bursts, so this counts each frame a
+   * loss cost, not the losses themselves: a fair measure of how often a frame needs
+   * another try, which is what a lead time must cover.
+   */
+  get frameLoss(): number {
+    return this.lossAverage;
   }
 
   /** The resend timeout in force (µs). */
@@ -376,7 +392,11 @@ export class DeviceSession implements StreamDevice {
     // stamp is early: the exchange then looks slow, which the envelopes ignore.)
     const pingId = out.message.type === 'PING' ? out.message.pingId : -1;
     const frameBytes = out.frame.length;
-    this.write(out.frame, pingId >= 0 && !this.pings.has(pingId) ? () => this.pings.set(pingId, { at: this.scheduler.now(), frameBytes }) : undefined);
+    const resent = out.firstSentAt !== out.sentAt;
+    this.lossAverage += ((resent ? 1 : 0) - this.lossAverage) / LOSS_AVERAGE_FRAMES;
+    const ping = this.pings.get(pingId);
+    if (ping && resent) ping.resent = true;
+    this.write(out.frame, pingId >= 0 && !ping ? () => this.pings.set(pingId, { at: this.scheduler.now(), frameBytes, resent: false }) : undefined);
   }
 
   /** Go-back-N: resend every frame in flight from `seq` on. */
@@ -471,6 +491,7 @@ export class DeviceSession implements StreamDevice {
             deviceReply: message.txTime,
             pingOnWire_us: sent.frameBytes * byte_us,
             pongOnWire_us: frameBytes * byte_us,
+            resent: sent.resent,
           });
         }
         break;
