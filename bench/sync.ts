@@ -49,6 +49,7 @@ import { nodeWasmLoader } from '../core/sim/device/nodeWasmLoader.ts';
 import { lightPainter } from '../core/sim/presets/index.ts';
 import { seededRandom } from '../core/random.ts';
 import { u32Diff } from '../core/net/clockMap.ts';
+import { seedListEnv } from './args.mjs';
 
 const HOUR_US = Number(process.env.SYNC_SECONDS ?? 3600) * 1e6;
 /**
@@ -73,17 +74,7 @@ const PROFILE = (process.env.SYNC_LINK ?? 'spec') as keyof typeof LINKS;
 if (!(PROFILE in LINKS)) throw new Error(`SYNC_LINK must be one of ${Object.keys(LINKS).join(', ')}`);
 /** Seeds to run: SYNC_SEEDS ("1-20", "1,4,9", "3-5,9"), else SEED (default 7). */
 function seedList(): number[] {
-  const spec = process.env.SYNC_SEEDS;
-  if (!spec) return [Number(process.env.SEED ?? 7)];
-  const seeds: number[] = [];
-  for (const part of spec.split(',')) {
-    const m = /^\s*(\d+)\s*(?:-\s*(\d+)\s*)?$/.exec(part);
-    if (!m) throw new Error(`SYNC_SEEDS: "${part}" is not a seed or a range like 1-20 (in "${spec}")`);
-    const [from, to] = [Number(m[1]), Number(m[2] ?? m[1])];
-    if (to < from) throw new Error(`SYNC_SEEDS: the range "${part}" runs backwards`);
-    for (let s = from; s <= to; s++) seeds.push(s);
-  }
-  return seeds;
+  return seedListEnv('SYNC_SEEDS', [Number(process.env.SEED ?? 7)]);
 }
 
 /** One simulated hour on one seed: the error figures. */
