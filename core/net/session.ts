@@ -389,14 +389,20 @@ export class DeviceSession implements StreamDevice {
     out.sentAt = this.scheduler.now();
     if (Number.isNaN(out.firstSentAt)) out.firstSentAt = out.sentAt;
     // A ping is stamped as its first copy enters the link. (If that copy was lost, the
-    // stamp is early: the exchange then looks slow, which the envelopes ignore.)
+    // stamp is early: the exchange then looks slow, which the envelopes ignore, and its
+    // round trip counts the resend's wait, which rtt leaves out: `resent`.)
     const pingId = out.message.type === 'PING' ? out.message.pingId : -1;
     const frameBytes = out.frame.length;
     const resent = out.firstSentAt !== out.sentAt;
     this.lossAverage += ((resent ? 1 : 0) - this.lossAverage) / LOSS_AVERAGE_FRAMES;
-    const ping = this.pings.get(pingId);
-    if (ping && resent) ping.resent = true;
-    this.write(out.frame, pingId >= 0 && !ping ? () => this.pings.set(pingId, { at: this.scheduler.now(), frameBytes, resent: false }) : undefined);
+    // A first copy is stamped afresh, even if its id is still held: a ping whose pong was
+    // lost stays in `pings`, and 65 535 pings later (262 s at 4 ms) its id comes round
+    // again; kept, that stale stamp made the new exchange's round trip minutes long.
+    if (pingId >= 0 && resent) {
+      const ping = this.pings.get(pingId);
+      if (ping) ping.resent = true;
+    }
+    this.write(out.frame, pingId >= 0 && !resent ? () => this.pings.set(pingId, { at: this.scheduler.now(), frameBytes, resent: false }) : undefined);
   }
 
   /** Go-back-N: resend every frame in flight from `seq` on. */
