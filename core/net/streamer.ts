@@ -6,7 +6,8 @@
  *  1. Timing. While the transmitted path ends less than `lead` ahead of now, or
  *     fewer than 2 transmitted segments are still to run, lock the next segment
  *     (queue.transmitNext) and send its TIMING and EVENTS. lead = 2·RTT plus a
- *     margin: a segment sent now arrives before the one before it ends. A segment
+ *     margin: a segment sent now arrives before the one before it ends (plus, on
+ *     a link that loses frames, time for the resends it needs: resendAllowance_us). A segment
  *     reaching far past the horizon is split first (queue.splitFront), so only a
  *     slice of it is locked and the rest stays editable: a hold-to-jog stops within
  *     a lead time, and a slow stream of points keeps moving instead of stopping at
