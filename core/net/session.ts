@@ -78,7 +78,7 @@ export const DEFAULT_SESSION: SessionOptions = {
   window: 8,
 };
 
-/** frameLoss averages over about this many recent transmissions. */
+/** frameLoss averages over about this many recent frames. */
 const LOSS_AVERAGE_FRAMES = 256;
 
 export interface SessionEvents {
@@ -147,7 +147,7 @@ export class DeviceSession implements StreamDevice {
   private pendingHello: { resolve(info: DeviceInfo): void; reject(err: Error): void; hello?: MessageOf<'HELLO'>; readers: ReaderInfo[] } | null = null;
   /** Pings awaiting their pong: when each was written (author µs), its frame's length in bytes, and whether it was sent again. */
   private pings = new Map<number, { at: number; frameBytes: number; resent: boolean }>();
-  /** The share of recent transmissions that were resends (frameLoss). */
+  /** The share of recent frames found corrupted (frameLoss). */
   private lossAverage = 0;
   private lastHelloRequestAt = -Infinity;
   private burstUntil = -Infinity;
@@ -160,8 +160,14 @@ export class DeviceSession implements StreamDevice {
     this.events = events;
     this.options = { ...DEFAULT_SESSION, ...options };
     this.receiver = new FrameReceiver(
-      (p, frameBytes) => this.onPacket(p, frameBytes),
-      (e) => this.events.wireError?.(e),
+      (p, frameBytes) => {
+        this.noteFrame(false);
+        this.onPacket(p, frameBytes);
+      },
+      (e) => {
+        this.noteFrame(true);
+        this.events.wireError?.(e);
+      },
     );
   }
 
@@ -258,14 +264,21 @@ export class DeviceSession implements StreamDevice {
   }
 
   /**
-   * The share of recent frames that had to be sent again (0 on a clean link): an
-   * exponential average over the last ~LOSS_AVERAGE_FRAMES transmissions, each a resend (1)
-   * or a first copy (0). Resends come in go-back-N bursts, so this counts each frame a
-   * loss cost, not the losses themselves: a fair measure of how often a frame needs
-   * another try, which is what a lead time must cover.
+   * The share of recent frames found corrupted (0 on a clean link): an exponential
+   * average over the last ~LOSS_AVERAGE_FRAMES frames, each counted 1 if it failed its
+   * check here (a bad CRC, a broken frame from the device) or was nacked BAD_CRC by the
+   * device (one of ours, corrupted on the way), 0 if it came through. Corruption is
+   * measured, not resends: on a slow link (an Uno's 25 kB/s UART) acks come late and
+   * the resend timer fires with nothing lost; counting those resends as loss lengthened
+   * the leads, which queued more bytes, which made more late acks (the feed-limit test's
+   * spiral stalled).
    */
   get frameLoss(): number {
     return this.lossAverage;
+  }
+
+  private noteFrame(corrupted: boolean): void {
+    this.lossAverage += ((corrupted ? 1 : 0) - this.lossAverage) / LOSS_AVERAGE_FRAMES;
   }
 
   /** The resend timeout in force (µs). */
@@ -394,7 +407,6 @@ export class DeviceSession implements StreamDevice {
     const pingId = out.message.type === 'PING' ? out.message.pingId : -1;
     const frameBytes = out.frame.length;
     const resent = out.firstSentAt !== out.sentAt;
-    this.lossAverage += ((resent ? 1 : 0) - this.lossAverage) / LOSS_AVERAGE_FRAMES;
     // A first copy is stamped afresh, even if its id is still held: a ping whose pong was
     // lost stays in `pings`, and 65 535 pings later (262 s at 4 ms) its id comes round
     // again; kept, that stale stamp made the new exchange's round trip minutes long.
@@ -583,6 +595,7 @@ export class DeviceSession implements StreamDevice {
       return;
     }
     if (reason === 'BAD_CRC' || reason === 'OUT_OF_ORDER') {
+      if (reason === 'BAD_CRC') this.noteFrame(true);
       // The device expects `seq` (BAD_CRC) or `detail` (OUT_OF_ORDER): everything before it arrived.
       const expected = reason === 'OUT_OF_ORDER' ? nack.detail & 0xff : nack.seq;
       const before = (expected - 1) & 0xff;

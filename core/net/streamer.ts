@@ -168,14 +168,14 @@ export class Streamer {
    * added to every lead below.
    *
    * A frame that is lost goes again at the latest resendAfter_us later (a NACK may
-   * bring it sooner). With f the share of the device's recent frames that needed
-   * another try (frameLoss), a frame covered for k resends is late with probability
+   * bring it sooner). With f the share of the link's recent frames found corrupted
+   * (frameLoss), a frame covered for k resends is late with probability
    * about f^(k+1), so k is the least with f^(k+1) ≤ LATE_FRAME_ODDS:
    *   k = ⌈ln(LATE_FRAME_ODDS) / ln f⌉ − 1,  at most MAX_COVERED_RESENDS.
-   * On a clean link f = 0, k = 0: every lead is as it was. Under byte corruption 10⁻²
-   * (frames of 20–40 bytes fail 18–33 % of the time, and go-back-N sends the frames
-   * behind a lost one again too) k reaches the cap: ~4 × 5 ms more lead (accelRig's
-   * motor board measured f = 0.56 there; the Blot at 10⁻³, f = 0.06: k = 2, ~10 ms).
+   * On a clean link f = 0, k = 0: every lead is as it was (a slow link's late acks
+   * resend frames, but corrupt none). Under byte corruption 10⁻² (frames of 20–40
+   * bytes fail 18–33 % of the time; accelRig's boards measured f = 0.20 and 0.28)
+   * k = 4, the cap: ~4 × 5 ms more lead.
    * (Without it, a start whose first frames were lost came too late: accelRig, seed
    * 95 of the corruption cases, five stops. The round trips of resent pings, which
    * counted the resend's wait, had padded these leads by chance: clockSync.ts, Karn's rule.)
