@@ -43,8 +43,9 @@
  * p99 worse (15–19 µs on seeds 1, 6, 11, 16), so the ping schedule is unchanged.
  *
  * After the rate fit's last slice took the remainder (no slice shorter than 64
- * exchanges; clockSync.ts), all 20 seeds run by this bench (SYNC_SEEDS=1-7, 8-12 and
- * 13-20 in three processes at nice 12 on the shared machine):
+ * exchanges; clockSync.ts), all 20 seeds run by this bench at nice 12 on the shared
+ * machine, in three processes (SYNC_SEEDS=1-20 stopped after seed 7; 18,11,12,10,9,8;
+ * 13-20, whose seed 18 gave the same figures):
  *   seed  p99 / max      seed  p99 / max      seed  p99 / max      seed  p99 / max
  *   1     5.84 / 17.38   6     4.72 / 26.49   11    8.40 / 33.73   16    7.30 / 22.86
  *   2     6.09 / 23.57   7     5.40 / 24.88   12    5.06 / 28.14   17    6.16 / 21.01
