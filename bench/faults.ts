@@ -30,14 +30,41 @@
  * Survival limits: detection < 500 ms, off the path ≤ 0.03 mm (0.5 mm after a restart,
  * whose position is estimated), back ≤ 0.03 mm, late ≤ 0 steps (not checked after a
  * restart), end ≤ 0.02 mm (0.5 mm after a restart).
+ *
+ * A part of the matrix alone (each unset: all of it, as above):
+ *   FAULTS_PRESETS=blotPlotter,accelRig   the presets' rows to run;
+ *   FAULTS_KINDS=corrupt1e-2,clockJump     the rows' cases to run, by their names in the JSON
+ *                                          (cut, corrupt1e-3, corrupt1e-2, latency, reboot,
+ *                                          clockJump, wrap, clockJumpBack, longJob);
+ *   FAULTS_CORRUPT_SEEDS=78 or 1-30,78     the seeds of the corrupt1e-2 cases (default 78),
+ *                                          one case each, summarised together.
+ * e.g. seed 78's corruption case on the Blot alone:
+ *   FAULTS_PRESETS=blotPlotter FAULTS_KINDS=corrupt1e-2 npm run bench -- faults
  */
 import { seededRandom } from '../core/random.ts';
 import { PRESETS, runFaultCase, type FaultCase, type FaultKind, type FaultOutcome, type PresetName } from '../core/system/faultCases.ts';
 import { runLongJob } from '../core/system/longJob.ts';
+import { seedListEnv } from './args.mjs';
 
 const CUTS = Number(process.env.FAULTS_CUTS ?? 100);
 const HOURS = Number(process.env.FAULTS_HOURS ?? 8);
-const presets: PresetName[] = ['blotPlotter', 'lightPainter', 'accelRig'];
+const ALL_PRESETS: PresetName[] = ['blotPlotter', 'lightPainter', 'accelRig'];
+const ALL_KINDS = ['cut', 'corrupt1e-3', 'corrupt1e-2', 'latency', 'reboot', 'clockJump', 'wrap', 'clockJumpBack', 'longJob'];
+/** A comma-separated list from `name`, each item one of `allowed`; all of them when unset (exit 2 on an unknown one). */
+function listEnv<T extends string>(name: string, allowed: readonly T[]): T[] {
+  const spec = process.env[name];
+  if (spec === undefined || spec === '') return [...allowed];
+  const items = spec.split(',').map((s) => s.trim());
+  const unknown = items.filter((s) => !allowed.includes(s as T));
+  if (unknown.length > 0) {
+    console.error(`${name}: ${unknown.map((u) => `"${u}"`).join(', ')} not known; choose from ${allowed.join(', ')}`);
+    process.exit(2);
+  }
+  return items as T[];
+}
+const presets = listEnv('FAULTS_PRESETS', ALL_PRESETS);
+const kinds = new Set(listEnv('FAULTS_KINDS', ALL_KINDS));
+const corruptSeeds = seedListEnv('FAULTS_CORRUPT_SEEDS', [78]);
 
 function survived(r: FaultOutcome, mustStop: boolean): boolean {
   const restarted = r.case.kind === 'reboot';
@@ -90,41 +117,49 @@ for (const preset of presets) {
   const devices = PRESETS[preset]().devices.map((d) => d.name);
   const firstMotor = PRESETS[preset]().plant.motors[0].device;
   const row: Record<string, unknown> = {};
-  // The cuts: a random board, a random moment.
+  // The cuts: a random board, a random moment (drawn even when not run, so each cut
+  // is the same case whatever runs beside it).
   const cuts: FaultOutcome[] = [];
   for (let k = 0; k < CUTS; k++) {
     const c: FaultCase = { preset, kind: 'cut', seed: 1000 + k, at: 0.05 + 0.9 * random(), device: devices[Math.floor(random() * devices.length)] };
+    if (!kinds.has('cut')) continue;
     cuts.push(await runFaultCase(c));
     if ((k + 1) % 10 === 0) log(`${preset}: ${k + 1} cuts`);
   }
-  row.cut = summarise(cuts, true);
+  if (kinds.has('cut')) row.cut = summarise(cuts, true);
   // Corruption: 1e-3 against a clean run, and 1e-2.
-  const clean = await runFaultCase({ preset, kind: 'corrupt', seed: 77, at: 0, corruption: 0 });
-  const low = await runFaultCase({ preset, kind: 'corrupt', seed: 77, at: 0, corruption: 1e-3 });
-  let planDiff = low.plan.length === clean.plan.length ? 0 : Infinity;
-  clean.plan.forEach((p, k) => p.forEach((v, i) => (planDiff = Math.max(planDiff, Math.abs((low.plan[k]?.[i] ?? Infinity) - v)))));
-  row['corrupt1e-3'] = { ...summarise([low], false), planDiff_mm: planDiff, identical: low.stops === 0 && planDiff < 1e-6 };
-  row['corrupt1e-2'] = summarise([await runFaultCase({ preset, kind: 'corrupt', seed: 78, at: 0, corruption: 1e-2 })], false);
-  for (const kind of ['latency', 'reboot', 'clockJump', 'wrap'] as FaultKind[]) {
-    row[kind] = summarise([await runFaultCase({ preset, kind, seed: 79, at: 0.45, device: firstMotor })], true);
+  if (kinds.has('corrupt1e-3')) {
+    const clean = await runFaultCase({ preset, kind: 'corrupt', seed: 77, at: 0, corruption: 0 });
+    const low = await runFaultCase({ preset, kind: 'corrupt', seed: 77, at: 0, corruption: 1e-3 });
+    let planDiff = low.plan.length === clean.plan.length ? 0 : Infinity;
+    clean.plan.forEach((p, k) => p.forEach((v, i) => (planDiff = Math.max(planDiff, Math.abs((low.plan[k]?.[i] ?? Infinity) - v)))));
+    row['corrupt1e-3'] = { ...summarise([low], false), planDiff_mm: planDiff, identical: low.stops === 0 && planDiff < 1e-6 };
   }
-  row.clockJumpBack = summarise([await runFaultCase({ preset, kind: 'clockJump', seed: 80, at: 0.55, device: firstMotor, jump_us: -20_000 })], true);
+  if (kinds.has('corrupt1e-2')) {
+    const runs: FaultOutcome[] = [];
+    for (const seed of corruptSeeds) runs.push(await runFaultCase({ preset, kind: 'corrupt', seed, at: 0, corruption: 1e-2 }));
+    row['corrupt1e-2'] = { ...summarise(runs, false), seeds: corruptSeeds };
+  }
+  for (const kind of ['latency', 'reboot', 'clockJump', 'wrap'] as FaultKind[]) {
+    if (kinds.has(kind)) row[kind] = summarise([await runFaultCase({ preset, kind, seed: 79, at: 0.45, device: firstMotor })], true);
+  }
+  if (kinds.has('clockJumpBack')) row.clockJumpBack = summarise([await runFaultCase({ preset, kind: 'clockJump', seed: 80, at: 0.55, device: firstMotor, jump_us: -20_000 })], true);
   matrix[preset] = row;
   log(`${preset} done`);
 }
 
 // The matrix so far, in case the long job is cut short (the last line below has everything).
 console.log(JSON.stringify({ matrixBeforeLongJob: matrix }));
-log(`long job: ${HOURS} h`);
-const longJob = await runLongJob(HOURS * 3.6e9, 300_000_000);
+if (kinds.has('longJob')) log(`long job: ${HOURS} h`);
+const longJob = kinds.has('longJob') ? await runLongJob(HOURS * 3.6e9, 300_000_000) : null;
 const cases = Object.values(matrix).flatMap((row) => Object.values(row) as Array<{ cases: number; survived: number }>);
 console.log(
   JSON.stringify({
-    cutsPerPreset: CUTS,
+    cutsPerPreset: kinds.has('cut') ? CUTS : 0,
     totalCases: cases.reduce((n, c) => n + c.cases, 0),
     totalSurvived: cases.reduce((n, c) => n + c.survived, 0),
     matrix,
-    longJob: { ...longJob, bounded: longJob.worstLateSteps <= 0 && longJob.errors.length === 0 },
+    longJob: longJob && { ...longJob, bounded: longJob.worstLateSteps <= 0 && longJob.errors.length === 0 },
     wallSeconds: (Date.now() - started) / 1000,
   }),
 );

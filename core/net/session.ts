@@ -78,6 +78,9 @@ export const DEFAULT_SESSION: SessionOptions = {
   window: 8,
 };
 
+/** frameLoss averages over about this many recent frames. */
+const LOSS_AVERAGE_FRAMES = 256;
+
 export interface SessionEvents {
   status?(status: MessageOf<'STATUS'>, at_us: number): void;
   samples?(samples: MessageOf<'SAMPLES'>, at_us: number): void;
@@ -142,8 +145,10 @@ export class DeviceSession implements StreamDevice {
     resend: null,
   };
   private pendingHello: { resolve(info: DeviceInfo): void; reject(err: Error): void; hello?: MessageOf<'HELLO'>; readers: ReaderInfo[] } | null = null;
-  /** Pings awaiting their pong: when each was written (author µs), and its frame's length in bytes. */
-  private pings = new Map<number, { at: number; frameBytes: number }>();
+  /** Pings awaiting their pong: when each was written (author µs), its frame's length in bytes, and whether it was sent again. */
+  private pings = new Map<number, { at: number; frameBytes: number; resent: boolean }>();
+  /** The share of recent frames found corrupted (frameLoss). */
+  private lossAverage = 0;
   private lastHelloRequestAt = -Infinity;
   private burstUntil = -Infinity;
   private openedAt = 0;
@@ -155,8 +160,14 @@ export class DeviceSession implements StreamDevice {
     this.events = events;
     this.options = { ...DEFAULT_SESSION, ...options };
     this.receiver = new FrameReceiver(
-      (p, frameBytes) => this.onPacket(p, frameBytes),
-      (e) => this.events.wireError?.(e),
+      (p, frameBytes) => {
+        this.noteFrame(false);
+        this.onPacket(p, frameBytes);
+      },
+      (e) => {
+        this.noteFrame(true);
+        this.events.wireError?.(e);
+      },
     );
   }
 
@@ -250,6 +261,24 @@ export class DeviceSession implements StreamDevice {
   get oldestUnacked_us(): number {
     const oldest = this.inFlight[0];
     return oldest ? this.scheduler.now() - oldest.firstSentAt : 0;
+  }
+
+  /**
+   * The share of recent frames found corrupted (0 on a clean link): an exponential
+   * average over the last ~LOSS_AVERAGE_FRAMES frames, each counted 1 if it failed its
+   * check here (a bad CRC, a broken frame from the device) or was nacked BAD_CRC by the
+   * device (one of ours, corrupted on the way), 0 if it came through. Corruption is
+   * measured, not resends: on a slow link (an Uno's 25 kB/s UART) acks come late and
+   * the resend timer fires with nothing lost; counting those resends as loss lengthened
+   * the leads, which queued more bytes, which made more late acks (the feed-limit test's
+   * spiral stalled).
+   */
+  get frameLoss(): number {
+    return this.lossAverage;
+  }
+
+  private noteFrame(corrupted: boolean): void {
+    this.lossAverage += ((corrupted ? 1 : 0) - this.lossAverage) / LOSS_AVERAGE_FRAMES;
   }
 
   /** The resend timeout in force (µs). */
@@ -373,10 +402,19 @@ export class DeviceSession implements StreamDevice {
     out.sentAt = this.scheduler.now();
     if (Number.isNaN(out.firstSentAt)) out.firstSentAt = out.sentAt;
     // A ping is stamped as its first copy enters the link. (If that copy was lost, the
-    // stamp is early: the exchange then looks slow, which the envelopes ignore.)
+    // stamp is early: the exchange then looks slow, which the envelopes ignore, and its
+    // round trip counts the resend's wait, which rtt leaves out: `resent`.)
     const pingId = out.message.type === 'PING' ? out.message.pingId : -1;
     const frameBytes = out.frame.length;
-    this.write(out.frame, pingId >= 0 && !this.pings.has(pingId) ? () => this.pings.set(pingId, { at: this.scheduler.now(), frameBytes }) : undefined);
+    const resent = out.firstSentAt !== out.sentAt;
+    // A first copy is stamped afresh, even if its id is still held: a ping whose pong was
+    // lost stays in `pings`, and 65 535 pings later (262 s at 4 ms) its id comes round
+    // again; kept, that stale stamp made the new exchange's round trip minutes long.
+    if (pingId >= 0 && resent) {
+      const ping = this.pings.get(pingId);
+      if (ping) ping.resent = true;
+    }
+    this.write(out.frame, pingId >= 0 && !resent ? () => this.pings.set(pingId, { at: this.scheduler.now(), frameBytes, resent: false }) : undefined);
   }
 
   /** Go-back-N: resend every frame in flight from `seq` on. */
@@ -471,6 +509,7 @@ export class DeviceSession implements StreamDevice {
             deviceReply: message.txTime,
             pingOnWire_us: sent.frameBytes * byte_us,
             pongOnWire_us: frameBytes * byte_us,
+            resent: sent.resent,
           });
         }
         break;
@@ -556,6 +595,7 @@ export class DeviceSession implements StreamDevice {
       return;
     }
     if (reason === 'BAD_CRC' || reason === 'OUT_OF_ORDER') {
+      if (reason === 'BAD_CRC') this.noteFrame(true);
       // The device expects `seq` (BAD_CRC) or `detail` (OUT_OF_ORDER): everything before it arrived.
       const expected = reason === 'OUT_OF_ORDER' ? nack.detail & 0xff : nack.seq;
       const before = (expected - 1) & 0xff;

@@ -23,6 +23,10 @@ export interface StreamDevice {
   readonly isOpen: boolean;
   /** A high recent round trip (µs), 0 before any was measured. */
   readonly rttHigh_us: number;
+  /** How long a frame waits for its ack before it is sent again (µs). */
+  readonly resendAfter_us: number;
+  /** The share of recent frames that had to be sent again: 0 on a clean link. */
+  readonly frameLoss: number;
   /** How long the oldest unacknowledged frame has waited since first sent (µs), 0 if none. */
   readonly oldestUnacked_us: number;
   /** Author µs → device µs, null until the clock model has a fit. */

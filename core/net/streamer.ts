@@ -6,7 +6,8 @@
  *  1. Timing. While the transmitted path ends less than `lead` ahead of now, or
  *     fewer than 2 transmitted segments are still to run, lock the next segment
  *     (queue.transmitNext) and send its TIMING and EVENTS. lead = 2·RTT plus a
- *     margin: a segment sent now arrives before the one before it ends. A segment
+ *     margin: a segment sent now arrives before the one before it ends (plus, on
+ *     a link that loses frames, time for the resends it needs: resendAllowance_us). A segment
  *     reaching far past the horizon is split first (queue.splitFront), so only a
  *     slice of it is locked and the rest stays editable: a hold-to-jog stops within
  *     a lead time, and a slow stream of points keeps moving instead of stopping at
@@ -83,6 +84,11 @@ export const DEFAULT_STREAMER: StreamerOptions = {
   tick_us: 1_000,
 };
 
+/** How rarely a frame may miss its lead on a lossy link (resendAllowance_us). */
+const LATE_FRAME_ODDS = 1e-3;
+/** Resends a lead covers at most (resendAllowance_us): each costs a resend timeout, ≥ 4 ms. */
+const MAX_COVERED_RESENDS = 4;
+
 export type StreamerEvent =
   | { type: 'conflict'; message: string }
   | { type: 'refused'; device: string; reason: string; detail: number; message: Message }
@@ -157,25 +163,52 @@ export class Streamer {
     this.options = { ...DEFAULT_STREAMER, ...options };
   }
 
-  /** µs of motion kept ahead: 2·RTT (the slowest device's recent worst) plus a margin. */
+  /**
+   * Time (µs) for the resends a frame to `device` may need on its link as measured,
+   * added to every lead below.
+   *
+   * A frame that is lost goes again at the latest resendAfter_us later (a NACK may
+   * bring it sooner). With f the share of the link's recent frames found corrupted
+   * (frameLoss), a frame covered for k resends is late with probability
+   * about f^(k+1), so k is the least with f^(k+1) ≤ LATE_FRAME_ODDS:
+   *   k = ⌈ln(LATE_FRAME_ODDS) / ln f⌉ − 1,  at most MAX_COVERED_RESENDS.
+   * On a clean link f = 0, k = 0: every lead is as it was (a slow link's late acks
+   * resend frames, but corrupt none). Under byte corruption 10⁻² (frames of 20–40
+   * bytes fail 18–33 % of the time; accelRig's boards measured f = 0.20 and 0.28)
+   * k = 4, the cap: ~4 × 5 ms more lead.
+   * (Without it, a start whose first frames were lost came too late: accelRig, seed
+   * 95 of the corruption cases, five stops. The round trips of resent pings, which
+   * counted the resend's wait, had padded these leads by chance: clockSync.ts, Karn's rule.)
+   */
+  private resendAllowance_us(device: StreamDevice): number {
+    const f = Math.min(device.frameLoss, 0.99);
+    if (!(f > 0)) return 0;
+    const resends = Math.min(MAX_COVERED_RESENDS, Math.max(0, Math.ceil(Math.log(LATE_FRAME_ODDS) / Math.log(f)) - 1));
+    return resends * device.resendAfter_us;
+  }
+
+  /** The largest over the devices of a high round trip plus its resend allowance (µs). */
+  private get slowestTrip_us(): number {
+    let worst = 0;
+    for (const d of this.devices) worst = Math.max(worst, d.binding.device.rttHigh_us + this.resendAllowance_us(d.binding.device));
+    return worst;
+  }
+
+  /** µs of motion kept ahead: 2·RTT (the slowest device's recent worst) plus a margin, plus the resend allowance. */
   get lead_us(): number {
-    let rtt = 0;
-    for (const d of this.devices) rtt = Math.max(rtt, d.binding.device.rttHigh_us);
-    return Math.max(this.options.minLead_us, 2 * rtt + this.options.leadMargin_us);
+    let worst = 0;
+    for (const d of this.devices) worst = Math.max(worst, 2 * d.binding.device.rttHigh_us + this.resendAllowance_us(d.binding.device));
+    return Math.max(this.options.minLead_us, worst + this.options.leadMargin_us);
   }
 
-  /** A frame unacknowledged for this long (µs) holds all timing back: a high round trip plus 1 ms. */
+  /** A frame unacknowledged for this long (µs) holds all timing back: a high round trip plus 1 ms, plus the resend allowance. */
   get stallLimit_us(): number {
-    let rtt = 0;
-    for (const d of this.devices) rtt = Math.max(rtt, d.binding.device.rttHigh_us);
-    return Math.max(3_000, rtt + 1_000);
+    return Math.max(3_000, this.slowestTrip_us + 1_000);
   }
 
-  /** µs from now to the start of a segment after rest: one RTT (the slowest device's worst) plus a margin. */
+  /** µs from now to the start of a segment after rest: one RTT (the slowest device's worst) plus a margin, plus the resend allowance. */
   get startLead_us(): number {
-    let rtt = 0;
-    for (const d of this.devices) rtt = Math.max(rtt, d.binding.device.rttHigh_us);
-    return rtt + this.options.startMargin_us;
+    return this.slowestTrip_us + this.options.startMargin_us;
   }
 
   start(): void {

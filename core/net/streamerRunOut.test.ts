@@ -17,6 +17,8 @@ import { Streamer } from './streamer.ts';
 class AckingDevice implements StreamDevice {
   readonly isOpen = true;
   readonly rttHigh_us = 1_000;
+  readonly resendAfter_us = 4_000;
+  readonly frameLoss = 0;
   readonly clockMap = new ClockMap(0, 0, 1);
   lastSentSeq = 0;
   holdAcks = false;

@@ -45,6 +45,8 @@ const DRY_LIMIT_US = 60_000_000;
 class DryDevice implements StreamDevice {
   readonly isOpen = true;
   readonly rttHigh_us = 0;
+  readonly resendAfter_us = 0;
+  readonly frameLoss = 0;
   readonly oldestUnacked_us = 0;
   readonly clockMap = new ClockMap(0, 0, 1);
   lastSentSeq = 0;

@@ -32,11 +32,13 @@ export { resonancePeak_hz } from '../sim/plant/bno055Truth.ts';
 
 export type StampCheck = StampTruth;
 
-/** Compares every captured sample from index `from` up to `to` (exclusive) with the chip's own record. */
+/** Compares every captured sample from index `from` up to `to` (exclusive) with the chip's own record, skipping the records of samples lost on the link. */
 export function checkStamps(b: Bench, capture: SensorCapture, from = 0, to = capture.size): StampCheck {
   const chip = b.sim.plant.accelerometer;
   if (!chip) throw new Error('the machine has no accelerometer');
-  return stampTruth(chip, capture.timeColumn(), [0, 1, 2].map((c) => capture.channel(c)), from, to);
+  const lostBefore = new Map<number, number>();
+  for (const g of capture.gaps) if (g.kind === 'lost') lostBefore.set(g.index, (lostBefore.get(g.index) ?? 0) + g.samples);
+  return stampTruth(chip, capture.timeColumn(), [0, 1, 2].map((c) => capture.channel(c)), from, to, lostBefore);
 }
 
 export interface CaptureRunResult {

@@ -198,12 +198,19 @@ export async function runFaultCase(c: FaultCase): Promise<FaultOutcome> {
     plan: [],
   };
   let injected = c.kind === 'corrupt';
-  let checkFrom = t0; // plan following is checked from here (Infinity: not now)
+  // Plan following is checked from here (Infinity: not now): from the job's first
+  // transmission on. Before it the author's record is empty and its plan reads the
+  // queue's tail, the job's end: nothing the motors could follow yet (they stand
+  // still; offPath_mm covers them).
+  let checkFrom = Infinity;
   let resuming = false;
   let firstStart = NaN;
   b.maxl.queue.subscribe((e) => {
     if (e.type !== 'transmitted') return;
-    if (Number.isNaN(firstStart)) firstStart = e.segments[0].startTime_us;
+    if (Number.isNaN(firstStart)) {
+      firstStart = e.segments[0].startTime_us;
+      if (!injected || c.kind === 'corrupt') checkFrom = t0;
+    }
     // After a resume, from the first segment of the job itself (a rejoin has move id 0).
     const own = e.segments.find((s) => s.moveId !== 0);
     if (resuming && own) {
