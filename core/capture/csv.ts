@@ -19,7 +19,7 @@
  */
 import type { TrajectorySample } from '../trajectory/tracks.ts';
 import { formatSafeCsvLines, type CsvCell } from './csvSafe.ts';
-import type { SampleGap } from './sampleGaps.ts';
+import { lostBeforeIndex, type SampleGap } from './sampleGaps.ts';
 
 /** A capture's columns (a SensorCapture, or a saved copy of one). */
 export interface CaptureColumns {
@@ -83,7 +83,7 @@ export function* captureCsvChunks(capture: CaptureColumns, options: CsvOptions, 
   const index = capture.indexColumn();
   const seq = capture.sequenceColumn();
   const channels = Array.from({ length: capture.channels }, (_, c) => capture.channel(c));
-  const lostBefore = new Map(capture.gaps.filter((g) => g.kind === 'lost').map((g) => [g.index, g.samples]));
+  const lostBefore = lostBeforeIndex(capture.gaps);
   const t0 = times.length > 0 ? times[0] : 0;
   yield formatSafeCsvLines([captureCsvColumns(capture, options)]);
   for (let from = 0; from < times.length; from += rowsPerChunk) {

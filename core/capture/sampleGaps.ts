@@ -53,6 +53,13 @@ export interface SampleGap {
   restarted?: boolean;
 }
 
+/** Samples lost on the link just before each capture index (the lost gaps, summed where two fall at one index). */
+export function lostBeforeIndex(gaps: readonly SampleGap[]): Map<number, number> {
+  const lostBefore = new Map<number, number>();
+  for (const g of gaps) if (g.kind === 'lost') lostBefore.set(g.index, (lostBefore.get(g.index) ?? 0) + g.samples);
+  return lostBefore;
+}
+
 const U16 = 0x10000;
 const U32 = 0x1_0000_0000;
 const RECENT = 63;

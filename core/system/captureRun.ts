@@ -19,6 +19,7 @@ import { accelRig } from '../sim/presets/index.ts';
 import { analyseCapture, type CaptureAnalysis } from '../capture/analysis.ts';
 import { limitsAlong, planTestMotion, type TestMotion } from '../capture/testMotions.ts';
 import type { SampleGap, SensorCapture } from '../capture/sensorCapture.ts';
+import { lostBeforeIndex } from '../capture/sampleGaps.ts';
 import type { SimulatedMachineOptions } from '../sim/machine.ts';
 import type { SpringParameters } from '../sim/plant/springResponse.ts';
 
@@ -36,9 +37,7 @@ export type StampCheck = StampTruth;
 export function checkStamps(b: Bench, capture: SensorCapture, from = 0, to = capture.size): StampCheck {
   const chip = b.sim.plant.accelerometer;
   if (!chip) throw new Error('the machine has no accelerometer');
-  const lostBefore = new Map<number, number>();
-  for (const g of capture.gaps) if (g.kind === 'lost') lostBefore.set(g.index, (lostBefore.get(g.index) ?? 0) + g.samples);
-  return stampTruth(chip, capture.timeColumn(), [0, 1, 2].map((c) => capture.channel(c)), from, to, lostBefore);
+  return stampTruth(chip, capture.timeColumn(), [0, 1, 2].map((c) => capture.channel(c)), from, to, lostBeforeIndex(capture.gaps));
 }
 
 export interface CaptureRunResult {

@@ -11,6 +11,7 @@ import type { PlannedMotion, TestMotion } from '../../../core/capture/testMotion
 import type { Bno055 } from '../../../core/sim/plant/bno055.ts';
 import { resonancePeak_hz, stampTruth } from '../../../core/sim/plant/bno055Truth.ts';
 import type { SpringParameters } from '../../../core/sim/plant/springResponse.ts';
+import { lostBeforeIndex } from '../../../core/capture/sampleGaps.ts';
 import { PLAN_STEP_US, type CaptureAnalysisView, type CaptureRecord, type PlannedSegment, type SensorTrace, type SimulatorTruth } from './protocol.ts';
 import { decimateMax } from './decimate.ts';
 
@@ -89,7 +90,9 @@ function truthOf(sensors: SensorTrace[], truth: RecordInput['truth'] | null): Si
   if (!truth || !truth.chip.record) return null;
   const trace = sensors.find((s) => s.device === truth.device && s.values.length === 3);
   if (!trace) return null;
-  const t = stampTruth(truth.chip, trace.author_us, trace.values);
+  // Skipping the chip's records of samples lost on the link (by value alone, the sample after
+  // a lost batch can match a lost one with the same values, a few reads early).
+  const t = stampTruth(truth.chip, trace.author_us, trace.values, 0, trace.author_us.length, lostBeforeIndex(trace.gaps));
   return {
     device: truth.device,
     stampErrorWorst_us: t.worst_us,
