@@ -15,6 +15,7 @@ import type { HistoricalSegment } from './history.ts';
 import type { SegmentState } from './segment.ts';
 import type { TrajectorySample } from './tracks.ts';
 import type { Timing } from '../plan/phases.ts';
+import { forwardingView } from './forwardingView.ts';
 
 /** A segment as a reader sees it (segment.ts has the meaning of each field). */
 export interface SegmentView {
@@ -105,54 +106,32 @@ export interface HistoryView {
  * that an app holds no reference to the queue's editing or executing methods.
  */
 export function readOnlyQueue(queue: QueueView): QueueView {
-  return {
-    segments: () => queue.segments(),
-    get size() {
-      return queue.size;
-    },
-    get untransmittedCount() {
-      return queue.untransmittedCount;
-    },
-    get capacity() {
-      return queue.capacity;
-    },
-    hasRoom: () => queue.hasRoom(),
-    get: (id) => queue.get(id),
-    untransmittedAt: (i) => queue.untransmittedAt(i),
-    get tailPosition() {
-      return queue.tailPosition;
-    },
-    get transmittedEnd_us() {
-      return queue.transmittedEnd_us;
-    },
-    get transmittedEndsMoving() {
-      return queue.transmittedEndsMoving;
-    },
-    get skippedZeroLength() {
-      return queue.skippedZeroLength;
-    },
-    subscribe: (listener) => queue.subscribe(listener),
-  };
+  return forwardingView(queue, {
+    segments: 'method',
+    size: 'value',
+    untransmittedCount: 'value',
+    capacity: 'value',
+    hasRoom: 'method',
+    get: 'method',
+    untransmittedAt: 'method',
+    tailPosition: 'value',
+    transmittedEnd_us: 'value',
+    transmittedEndsMoving: 'value',
+    skippedZeroLength: 'value',
+    subscribe: 'method',
+  });
 }
 
 /** The same for the history: `maxl.history`. */
 export function readOnlyHistory(history: HistoryView): HistoryView {
-  return {
-    get capacity() {
-      return history.capacity;
-    },
-    get horizon_us() {
-      return history.horizon_us;
-    },
-    get pushed() {
-      return history.pushed;
-    },
-    get size() {
-      return history.size;
-    },
-    at: (i) => history.at(i),
-    indexAt: (t_us) => history.indexAt(t_us),
-    sample: (t_us) => history.sample(t_us),
-    eventValue: (channel, t_us) => history.eventValue(channel, t_us),
-  };
+  return forwardingView(history, {
+    capacity: 'value',
+    horizon_us: 'value',
+    pushed: 'value',
+    size: 'value',
+    at: 'method',
+    indexAt: 'method',
+    sample: 'method',
+    eventValue: 'method',
+  });
 }
