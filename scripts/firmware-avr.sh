@@ -50,24 +50,24 @@ for name in "${examples[@]}"; do
 done
 echo "(static RAM = .data + .bss of $RAM_TOTAL bytes; the stack grows down from the top of RAM into the free part)"
 
-# The AVR assembly of the evaluation hot path (fixed_point.h) cannot run in the
-# host tests: check it against the portable form in simavr.
-if bash "$root/scripts/firmware-avr-sketch.sh" "$root/firmware/bench/MulHiCheck" "$out"; then
-  result="$(timeout 300 simavr -m atmega328p -f 16000000 "$out/MulHiCheck/MulHiCheck.elf" 2>&1 | tr -d '\r' | sed 's/\x1b\[[0-9;]*m//g' | grep -E '^MULHI' || true)"
-  echo "AVR mulhi16 self-test in simavr: ${result:-no output}"
-  case "$result" in "MULHI OK"*) ;; *) status=1 ;; esac
-else
-  status=1
-fi
-# The window count's assembly (readers/step_count.h) against its portable form,
-# likewise (the portable form is checked on the host against a threshold walk).
-if bash "$root/scripts/firmware-avr-sketch.sh" "$root/firmware/bench/StepCountCheck" "$out"; then
-  result="$(timeout 300 simavr -m atmega328p -f 16000000 "$out/StepCountCheck/StepCountCheck.elf" 2>&1 | tr -d '\r' | sed 's/\x1b\[[0-9;]*m//g' | grep -E '^COUNT' || true)"
-  echo "AVR step count self-test in simavr: ${result:-no output}"
-  case "$result" in "COUNT OK"*) ;; *) status=1 ;; esac
-else
-  status=1
-fi
+# AVR assembly cannot run in the host tests: each self-test sketch checks it
+# against its portable form in simavr and prints "<WORD> OK <cases>".
+#   avr_self_test SKETCH WORD LABEL
+avr_self_test() {
+  local sketch="$1" word="$2" label="$3" result
+  if bash "$root/scripts/firmware-avr-sketch.sh" "$root/firmware/bench/$sketch" "$out"; then
+    result="$(timeout 300 simavr -m atmega328p -f 16000000 "$out/$sketch/$sketch.elf" 2>&1 | tr -d '\r' | sed 's/\x1b\[[0-9;]*m//g' | grep -E "^$word" || true)"
+    echo "AVR $label self-test in simavr: ${result:-no output}"
+    case "$result" in "$word OK"*) ;; *) status=1 ;; esac
+  else
+    status=1
+  fi
+}
+# The evaluation hot path (motion/fixed_point.h).
+avr_self_test MulHiCheck MULHI mulhi16
+# The window count (readers/step_count.h; its portable form is checked on the
+# host against a threshold walk).
+avr_self_test StepCountCheck COUNT "step count"
 # The step vector's fast path (readers/step_timer.cpp) is AVR assembly, which
 # the host tests cannot run either: drive benchmark sketches in simavr with
 # real frames (bench/firmware/simavr_steps.c, the step-rate benchmark's
