@@ -183,3 +183,48 @@ describe('ClockSync round trips (Karn’s rule)', () => {
     expect(karn.clock!.toDeviceExact(2e6)).toBe(naive.clock!.toDeviceExact(2e6));
   });
 });
+
+describe('ClockSync slews its refits', () => {
+  /**
+   * Pings every 4 ms on a clean link for 4 s; at 2.2 s one exchange's ping comes
+   * 120 µs faster than the link's floor (its up point 120 µs below every other):
+   * the fit's lower envelope, and with it the offset, drops by about 60 µs at once,
+   * as the young model of the fault matrix's corruption case did (light painter,
+   * seed 15: 62 µs in one refit, 2.2 s after begin()). Returns the largest move of
+   * the model's prediction 20 ms ahead from one exchange to the next after the first
+   * second (what a segment timed before a refit and run after it is off by), and the
+   * model's prediction at the end.
+   */
+  function movesAroundAFastExchange(maxRefitMove_us: number) {
+    const rand = seededRandom(11);
+    const dev = (a: number) => 3_000_000 + a * (1 + 40e-6);
+    const sync = new ClockSync({ maxRefitMove_us });
+    let worst = 0;
+    let fastDone = false;
+    for (let a = 0; a < 4e6; a += 4000 * (0.75 + 0.5 * rand())) {
+      const e = exchange(rand, a, dev, [150, 1250], [250, 500]);
+      if (!fastDone && a > 2.2e6) {
+        fastDone = true;
+        e.deviceReceive = Math.floor(dev(a + 30)); // up in 30 µs, below the floor of 150
+      }
+      const before = sync.clock?.toDeviceExact(e.authorReceive + 20_000);
+      sync.add(e);
+      const after = sync.clock!.toDeviceExact(e.authorReceive + 20_000);
+      if (a > 1e6) worst = Math.max(worst, Math.abs(after - before!));
+    }
+    return { worst, end: sync.clock!.toDeviceExact(4.02e6) };
+  }
+
+  it('one refit moves the model by at most maxRefitMove_us (10 µs) plus the rate change’s share, and the rest follows', () => {
+    const unslewed = movesAroundAFastExchange(Infinity);
+    const slewed = movesAroundAFastExchange(10);
+    // Unslewed, the fast exchange moves the model by tens of µs in one refit.
+    expect(unslewed.worst).toBeGreaterThan(40);
+    // Slewed: 10 µs at the refit's exchange, and the new rate's share 20 ms on
+    // (a few ppm × 20 ms, well under 1 µs), within REFIT_US (25 µs) of the fault checks.
+    expect(slewed.worst).toBeLessThan(11);
+    // The rest is applied over the next refits (10 µs each, every 100 ms while the
+    // window is young): 1.8 s later the two models agree.
+    expect(Math.abs(slewed.end - unslewed.end)).toBeLessThan(0.5);
+  });
+});

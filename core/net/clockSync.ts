@@ -79,6 +79,34 @@
  * round-trip time (rtt) stays the whole trip, wire times included: lead times need
  * all of it.
  *
+ * ## Slewing: a refit moves the model by at most maxRefitMove_us
+ * A segment's device time is fixed when it is sent, by the model then; it runs up to
+ * a lead (tens of ms; longer for a long segment's end) later. A refit in between moves
+ * the model by m at that time: the segment runs m off the model then in force. The
+ * fault checks allow REFIT_US = 25 µs for that (core/system/harness.ts). A young
+ * window's fit can jump by more: its envelopes rest on few exchanges, one new fast
+ * exchange moves them, and its rate is still uncertain. On a link that corrupts 1 % of
+ * bytes (a sixth of the exchanges lost), 2.2 s after begin(), the rate's standard
+ * error (1/√(Σₖ wₖ·Sttₖ) in fitRate) was 11 ppm, the rate 28 ppm off, and one refit
+ * moved the rate by 16 ppm and the offset by 62 µs (fault matrix, corruption 10⁻²,
+ * light painter seed 15: a motor 0.26 steps beyond its bound).
+ * So, once the model has a fitted rate, each refit takes the fit's rate but moves the
+ * model's offset at the newest exchange, a₀, by at most S = maxRefitMove_us (10 µs)
+ * towards the fit's; the rest follows at the next refits (NTP's slew, not its step).
+ * A prediction t after a₀ then moves by at most S + |Δr|·t, Δr the rate's change (a
+ * few ppm once the rate is fitted: < 1 µs over a 100 ms lead). Refits come every
+ * 100 ms while the window is young (< 10 s), so a segment's span from its sending to
+ * its end crosses one or two: 2·S = 20 µs < REFIT_US.
+ * Convergence: a gap g between model and fit closes in ⌈g/S⌉ refits if the fit stays:
+ * 100 µs a second while the window is young, 10 µs a second up to a minute, 1 µs a
+ * second after (refits every 1 s, then 10 s), when refits move the fit by a few µs at
+ * most. The rate is not slewed: held back, it would open the gap at |Δr| a second
+ * (the model would fall behind faster than S a refit can follow). A fit more than
+ * STEP_US (1 ms) away replaces the model at once: that is not a refit's noise, and
+ * slewing it at 10 µs a step would take 100 refits. Before the rate is fitted (the
+ * window's first half second, during begin()'s sync) every fit is taken whole.
+ * errorEstimate_us adds the part not yet applied.
+ *
  * The exchanges themselves: the session pings every 4 ms for its first two minutes,
  * then every 25 ms (session.ts).
  *
@@ -117,12 +145,15 @@ export interface ClockSyncOptions {
   minSpanForRate_us: number;
   /** refit at most this often (µs) once the model exists */
   refitEvery_us: number;
+  /** a refit moves the model's offset at the newest exchange by at most this (µs): see "Slewing" */
+  maxRefitMove_us: number;
 }
 
 export const DEFAULT_CLOCK_SYNC: ClockSyncOptions = {
   window_us: 1_200_000_000,
   minSpanForRate_us: 500_000,
   refitEvery_us: 1_000_000,
+  maxRefitMove_us: 10,
 };
 
 export class ClockSync {
@@ -138,6 +169,10 @@ export class ClockSync {
   private lastFit = -Infinity;
   private rttRecent: number[] = [];
   private spread = Infinity;
+  /** The last fit had a fitted rate (not the held one): refits from then on are slewed. */
+  private rateFitted = false;
+  /** How far the model's offset is still from the last fit's (µs): the slew's part not yet applied. */
+  private heldBack = 0;
   /** Exchanges folded in so far. */
   samples = 0;
 
@@ -202,11 +237,12 @@ export class ClockSync {
 
   /**
    * An estimate of the model's error (µs): how far the offset would move if only
-   * the last quarter of the window's exchanges were used. Infinity before a model.
+   * the last quarter of the window's exchanges were used, plus the part of the last
+   * fit not yet applied (see "Slewing"). Infinity before a model.
    * It cannot see a constant asymmetry of the link (nothing can).
    */
   get errorEstimate_us(): number {
-    return this.model === null ? Infinity : this.spread;
+    return this.model === null ? Infinity : this.spread + this.heldBack;
   }
 
   private unwrap(u32: number): number {
@@ -224,9 +260,14 @@ export class ClockSync {
     let rate = this.model?.rate ?? 1;
     const up = lowerHull(this.a1, this.d1, first, a0);
     const down = upperHull(this.a2, this.d2, first, a0);
-    if (span >= this.options.minSpanForRate_us && n >= 24) rate = fitRate(this.a1, this.d1, this.a2, this.d2, first, a0, rate);
+    const rateFitted = span >= this.options.minSpanForRate_us && n >= 24;
+    if (rateFitted) rate = fitRate(this.a1, this.d1, this.a2, this.d2, first, a0, rate);
     const offset = (envelope(up, rate, Math.min) + envelope(down, rate, Math.max)) / 2;
-    this.model = new ClockMap(a0, offset, rate);
+    const fitted = new ClockMap(a0, offset, rate);
+    // Slew once the model has a fitted rate (segments are timed by it from then on).
+    this.model = this.model !== null && this.rateFitted ? slewed(this.model, fitted, this.options.maxRefitMove_us) : fitted;
+    this.heldBack = Math.abs(offset - this.model.deviceRef);
+    this.rateFitted = rateFitted;
     // Error estimate: how far the last quarter's envelopes alone would put the offset.
     const recent = this.firstSentAfter(a0 - span / 4);
     if (recent < this.a1.length - 8) {
@@ -246,6 +287,21 @@ export class ClockSync {
     }
     return lo;
   }
+}
+
+/** A fit further than this from the model (µs) replaces it at once: a slew would take too long (see "Slewing"). */
+const STEP_US = 1_000;
+
+/**
+ * The fit, its offset at a₀ moved from the model's by at most `maxMove` (see "Slewing"
+ * above): at a₀ the offset model(a₀) + clamp(fitted(a₀) − model(a₀), ±maxMove), the
+ * fitted rate. A fit further than STEP_US replaces the model at once.
+ */
+function slewed(model: ClockMap, fitted: ClockMap, maxMove: number): ClockMap {
+  const a0 = fitted.authorRef;
+  const gap = fitted.deviceRef - model.toDeviceExact(a0);
+  if (Math.abs(gap) > STEP_US) return fitted;
+  return new ClockMap(a0, model.toDeviceExact(a0) + Math.max(-maxMove, Math.min(maxMove, gap)), fitted.rate);
 }
 
 /** Exchanges per slice in the rate fit, and the share of each slice kept per direction. */
