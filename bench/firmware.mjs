@@ -38,6 +38,21 @@
 //   bytesPerLinearSegment merged from bench/segment-bytes.ts (the TS encoder)
 //                         when that file exists
 // Measured every run; nothing is hard-coded.
+//
+// Options (after `npm run bench -- firmware`; or `node bench/firmware.mjs …`):
+//   --only LIST           measure only these parts, comma-separated, of
+//                         eval (the evaluation cycles), one, two, two30, three
+//                         (the step-rate searches), examples (flash and RAM),
+//                         host (callgrind), segment (bytesPerLinearSegment);
+//                         the JSON then holds only their fields. Default: all.
+//   --from HZ --to HZ     bracket each step-rate search: HZ of --from is tried
+//                         first and, if it passes, is the lower end (else the
+//                         upper); --to's is tried and, if it fails, is the
+//                         upper end (else 80 000 is); then halving as always
+//                         (defaults 0 and 80 000). Fewer trials near a known
+//                         figure; the figure can differ from the default
+//                         search's only where misses do not grow with the
+//                         rate (a pass above a fail).
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, readdirSync } from 'node:fs';
 import path from 'node:path';
@@ -60,17 +75,47 @@ function must(cmd, args, what) {
   }
   return r.stdout + r.stderr;
 }
+const PARTS = ['eval', 'one', 'two', 'two30', 'three', 'examples', 'host', 'segment'];
+function option(name) {
+  const i = process.argv.indexOf(name);
+  if (i < 0) return undefined;
+  const value = process.argv[i + 1];
+  if (value === undefined || value.startsWith('--')) throw new Error(`${name} needs a value`);
+  return value;
+}
+const onlyList = option('--only');
+const only = new Set(onlyList ? onlyList.split(',').map((p) => p.trim()) : PARTS);
+for (const p of only) if (!PARTS.includes(p)) throw new Error(`--only: unknown part "${p}" (known: ${PARTS.join(', ')})`);
+function hzOption(name, fallback) {
+  const text = option(name);
+  const hz = Number(text ?? fallback);
+  if (!Number.isInteger(hz) || hz < 0 || hz > 80000) throw new Error(`${name}: expected a whole number of Hz from 0 to 80 000, got "${text}"`);
+  return hz;
+}
+const fromHz = hzOption('--from', 0);
+const toHz = hzOption('--to', 80000);
+if (fromHz >= toHz) throw new Error(`--from ${fromHz} must be below --to ${toHz}`);
+const want = (part) => only.has(part);
 const log = (...a) => console.log('[bench firmware]', ...a);
 const clean = (s) => s.replace(/\x1b\[[0-9;]*m/g, '');
 
 // ---- builds
-for (const sketch of ['EvalCycles', 'StepRate', 'StepRateTwo', 'StepRateThree']) {
+const sketches = [
+  ['EvalCycles', want('eval')],
+  ['StepRate', want('one')],
+  ['StepRateTwo', want('two') || want('two30')],
+  ['StepRateThree', want('three')],
+];
+for (const [sketch, needed] of sketches) {
+  if (!needed) continue;
   must('bash', ['scripts/firmware-avr-sketch.sh', `firmware/bench/${sketch}`, out], `AVR build of ${sketch}`);
 }
 const harness = path.join(out, 'simavr_steps');
 must('gcc', ['-O2', '-Wall', '-o', harness, 'bench/firmware/simavr_steps.c', '-lsimavr', '-lm'], 'the simavr harness build');
 
 // ---- cycles per evaluation
+let one, two, spiral;
+if (want('eval')) {
 const evalOut = clean(must('timeout', ['600', 'simavr', '-m', 'atmega328p', '-f', '16000000', path.join(out, 'EvalCycles/EvalCycles.elf')], 'EvalCycles in simavr'));
 if (/FAIL/.test(evalOut)) throw new Error(`EvalCycles failed:\n${evalOut}`);
 const parse = (label) => {
@@ -78,11 +123,12 @@ const parse = (label) => {
   if (!m) throw new Error(`no "${label}" result from EvalCycles:\n${evalOut}`);
   return { evaluations: Number(m[1]), mean: Number(m[2]), p99: Number(m[3]), max: Number(m[4]) };
 };
-const one = parse('oneSlot');
-const two = parse('twoSlots');
-const spiral = parse('spiral');
+one = parse('oneSlot');
+two = parse('twoSlots');
+spiral = parse('spiral');
 log(`evaluation, one slot: ${one.mean} cycles mean, ${one.max} max over ${one.evaluations}; two slots: ${two.mean} mean, ${two.max} max`);
 log(`evaluation, spiral of 0.5 mm pieces (two slots): ${spiral.mean} mean, p99 ${spiral.p99}, max ${spiral.max} over ${spiral.evaluations}`);
+}
 
 // ---- step rate: binary search for the highest rate without a missed step,
 // for one stepper (the Stepper example) and for two (BlotPlotter's CoreXY pair,
@@ -107,7 +153,12 @@ function searchRate(label, elf, env) {
   const STEP = 250;
   let lo = 0;
   let hi = 80000;
-  if (trial(hi).missed === 0) lo = hi;
+  if (fromHz > 0) {
+    if (trial(fromHz).missed === 0) lo = fromHz;
+    else hi = fromHz;
+  }
+  if (toHz < hi && trial(toHz).missed > 0) hi = toHz;
+  if (hi === 80000 && trial(hi).missed === 0) lo = hi;
   while (hi - lo > STEP) {
     const mid = Math.round((lo + hi) / 2 / STEP) * STEP;
     if (mid <= lo || mid >= hi) break;
@@ -117,10 +168,10 @@ function searchRate(label, elf, env) {
   log(lo ? `${label}: highest rate without a missed step: ${lo} Hz` : `${label}: steps were missed at every rate tried`);
   return { rate: lo, best: lo ? trials.get(lo) : null };
 }
-const { rate: lo, best } = searchRate('one stepper', path.join(out, 'StepRate/StepRate.elf'), {});
-const pair = searchRate('two steppers', path.join(out, 'StepRateTwo/StepRateTwo.elf'), { STEPPERS: '2' });
-const pair30 = searchRate('two steppers at 30°', path.join(out, 'StepRateTwo/StepRateTwo.elf'), { STEPPERS: '2', ANGLE_DEG: '30' });
-const three = searchRate('three steppers', path.join(out, 'StepRateThree/StepRateThree.elf'), { STEPPERS: '3', CRUISE_SEGMENTS: '4' });
+const single = want('one') ? searchRate('one stepper', path.join(out, 'StepRate/StepRate.elf'), {}) : null;
+const pair = want('two') ? searchRate('two steppers', path.join(out, 'StepRateTwo/StepRateTwo.elf'), { STEPPERS: '2' }) : null;
+const pair30 = want('two30') ? searchRate('two steppers at 30°', path.join(out, 'StepRateTwo/StepRateTwo.elf'), { STEPPERS: '2', ANGLE_DEG: '30' }) : null;
+const three = want('three') ? searchRate('three steppers', path.join(out, 'StepRateThree/StepRateThree.elf'), { STEPPERS: '3', CRUISE_SEGMENTS: '4' }) : null;
 
 // ---- flash and RAM each example leaves free on the Uno (its build_flags.txt)
 function exampleSizes() {
@@ -137,10 +188,11 @@ function exampleSizes() {
   }
   return sizes;
 }
-const examples = exampleSizes();
+const examples = want('examples') ? exampleSizes() : undefined;
 
 // ---- host instructions per evaluation (callgrind)
 let hostInstructionsPerEval;
+if (want('host')) {
 const hostBin = path.join(out, 'eval_host');
 const library = readdirSync(path.join(root, 'firmware/src'), { recursive: true })
   .filter((f) => f.endsWith('.cpp'))
@@ -161,10 +213,13 @@ if (run('sh', ['-c', 'command -v valgrind']).status === 0) {
 } else {
   process.stderr.write('[bench firmware] valgrind not found: hostInstructionsPerEval omitted\n');
 }
+}
 
 // ---- bytes per linear segment, from the TS encoder
 let bytesPerLinearSegment;
-if (existsSync(path.join(root, 'bench/segment-bytes.ts'))) {
+if (!want('segment')) {
+  // not asked for (--only)
+} else if (existsSync(path.join(root, 'bench/segment-bytes.ts'))) {
   const r = run('npx', ['tsx', 'bench/segment-bytes.ts']);
   const last = (r.stdout || '').trim().split('\n').pop();
   try {
@@ -178,26 +233,47 @@ if (existsSync(path.join(root, 'bench/segment-bytes.ts'))) {
   process.stderr.write('[bench firmware] bench/segment-bytes.ts does not exist yet: bytesPerLinearSegment omitted\n');
 }
 
+const best = single?.best;
 const result = {
-  avrCyclesPerEval: one.mean,
-  avrCyclesPerEvalMax: Math.max(one.max, two.max, spiral.max),
-  avrCyclesPerEvalTwoSlots: two.mean,
-  avrCyclesPerEvalSpiral: spiral.mean,
-  avrCyclesPerEvalSpiralP99: spiral.p99,
-  avrCyclesPerEvalSpiralMax: spiral.max,
-  avrCyclesPerEvalDefinition:
-    'Motion::tick cycles (Timer 1 at clk/1, interrupts off), one evaluation every 20 µs: a 100 mm move (one and two slots) and 300 mm of a spiral in 0.5 mm pieces (two slots); Max is the largest of all',
-  avrStepRateHz: lo,
-  avrStepRateDefinition:
-    'highest cruise rate (250 Hz grid, 80 steps/mm, 10000 mm/s² ramps, 300 ms cruise, all frames sent before the move, STATUS reports running) at which every step edge comes within one step period after its ideal time, none more than 2 µs early, none missing',
+  ...(one
+    ? {
+        avrCyclesPerEval: one.mean,
+        avrCyclesPerEvalMax: Math.max(one.max, two.max, spiral.max),
+        avrCyclesPerEvalTwoSlots: two.mean,
+        avrCyclesPerEvalSpiral: spiral.mean,
+        avrCyclesPerEvalSpiralP99: spiral.p99,
+        avrCyclesPerEvalSpiralMax: spiral.max,
+        avrCyclesPerEvalDefinition:
+          'Motion::tick cycles (Timer 1 at clk/1, interrupts off), one evaluation every 20 µs: a 100 mm move (one and two slots) and 300 mm of a spiral in 0.5 mm pieces (two slots); Max is the largest of all',
+      }
+    : {}),
+  ...(single
+    ? {
+        avrStepRateHz: single.rate,
+        avrStepRateDefinition:
+          'highest cruise rate (250 Hz grid, 80 steps/mm, 10000 mm/s² ramps, 300 ms cruise, all frames sent before the move, STATUS reports running) at which every step edge comes within one step period after its ideal time, none more than 2 µs early, none missing',
+      }
+    : {}),
   ...(best ? { avrStepRateMaxLagUs: best.maxLagUs, avrLoopCyclesMean: best.loopMeanCycles, avrLoopMaxUs: Number((best.loopMaxCycles / 16).toFixed(1)) } : {}),
-  avrStepRateTwoSteppersHz: pair.rate,
-  avrStepRateTwoSteppersDefinition: 'the same move on two steppers at once (StepRateTwo: STEP D2 and D3, both on the step timer, as BlotPlotter), each at the rate; every step of both checked',
-  avrStepRateTwoSteppers30DegHz: pair30.rate,
-  avrStepRateTwoSteppers30DegDefinition: 'the same pair on a CoreXY line at 30° to x: motor a (x + y) at the rate, motor b (x − y) at 0.268 of it; every step of both checked against its own period',
-  avrStepRateThreeSteppersHz: three.rate,
-  avrStepRateThreeSteppersDefinition: 'the same move on three steppers (StepRateThree: the CncShield example, STEP D2, D3, D4, 6 segments), each at the rate; every step of all three checked',
-  examples,
+  ...(pair
+    ? {
+        avrStepRateTwoSteppersHz: pair.rate,
+        avrStepRateTwoSteppersDefinition: 'the same move on two steppers at once (StepRateTwo: STEP D2 and D3, both on the step timer, as BlotPlotter), each at the rate; every step of both checked',
+      }
+    : {}),
+  ...(pair30
+    ? {
+        avrStepRateTwoSteppers30DegHz: pair30.rate,
+        avrStepRateTwoSteppers30DegDefinition: 'the same pair on a CoreXY line at 30° to x: motor a (x + y) at the rate, motor b (x − y) at 0.268 of it; every step of both checked against its own period',
+      }
+    : {}),
+  ...(three
+    ? {
+        avrStepRateThreeSteppersHz: three.rate,
+        avrStepRateThreeSteppersDefinition: 'the same move on three steppers (StepRateThree: the CncShield example, STEP D2, D3, D4, 6 segments), each at the rate; every step of all three checked',
+      }
+    : {}),
+  ...(examples ? { examples } : {}),
   ...(hostInstructionsPerEval !== undefined ? { hostInstructionsPerEval } : {}),
   ...(bytesPerLinearSegment !== undefined ? { bytesPerLinearSegment } : {}),
 };
