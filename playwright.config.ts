@@ -34,6 +34,8 @@ export function sharedConfig(port: number) {
 export default defineConfig({
   ...sharedConfig(PORT),
   testDir: 'e2e',
+  // Specs only: e2e/support's own unit tests (*.test.ts) run under vitest.
+  testMatch: '**/*.spec.ts',
   // The production build's specs run under their own config (playwright.built.config.ts).
   testIgnore: ['built/**'],
   outputDir: 'test-results/e2e',
