@@ -65,14 +65,18 @@ for (const seed of SEEDS) {
 }
 
 const lossy = await runCaptureOnAccelRig({ ...SWEEP, fromHz: 20, toHz: 35, hzPerSecond: 1.5 }, 7, { links: { accelerometer: { toAuthor: { corruptionProbability: 3e-3 } } } });
-const lossyRun = {
-  samplesTaken: lossy.samplesExpected,
-  samplesReceived: lossy.samplesReceived,
-  samplesReportedLost: lossy.samplesLostReported,
-  gaps: lossy.capture.gaps.filter((g) => g.kind === 'lost' && g.index > lossy.firstSample && g.index < lossy.firstSample + lossy.samplesReceived).length,
-  exact: lossy.samplesReceived + lossy.samplesLostReported === lossy.samplesExpected,
-  stampErrorMs: lossy.stamps.worst_us / 1000,
-};
+/** How a lossy run's samples are accounted for: taken, received, reported lost (exact when they add up), the gaps inside the run, the worst stamp error. */
+function lossAccounting(r: Awaited<ReturnType<typeof runCaptureOnAccelRig>>) {
+  return {
+    samplesTaken: r.samplesExpected,
+    samplesReceived: r.samplesReceived,
+    samplesReportedLost: r.samplesLostReported,
+    gaps: r.capture.gaps.filter((g) => g.kind === 'lost' && g.index > r.firstSample && g.index < r.firstSample + r.samplesReceived).length,
+    exact: r.samplesReceived + r.samplesLostReported === r.samplesExpected,
+    stampErrorMs: r.stamps.worst_us / 1000,
+  };
+}
+const lossyRun = lossAccounting(lossy);
 await lossy.bench.sim.stop();
 
 // Ten simulated minutes at the example's rate (1 kHz) on a link that corrupts 1e-3 of the
@@ -85,12 +89,7 @@ const longSpan_s = (longTimes[long.firstSample + long.samplesReceived - 1] - lon
 const tenMinuteRun = {
   seconds: Number(longSpan_s.toFixed(1)),
   sampleRateHz: Number(((long.samplesExpected - 1) / longSpan_s).toFixed(1)),
-  samplesTaken: long.samplesExpected,
-  samplesReceived: long.samplesReceived,
-  samplesReportedLost: long.samplesLostReported,
-  gaps: long.capture.gaps.filter((g) => g.kind === 'lost' && g.index > long.firstSample && g.index < long.firstSample + long.samplesReceived).length,
-  exact: long.samplesReceived + long.samplesLostReported === long.samplesExpected,
-  stampErrorMs: long.stamps.worst_us / 1000,
+  ...lossAccounting(long),
   unmatched: long.stamps.unmatched,
 };
 console.log(`ten minutes: ${JSON.stringify(tenMinuteRun)}`);

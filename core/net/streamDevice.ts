@@ -25,7 +25,7 @@ export interface StreamDevice {
   readonly rttHigh_us: number;
   /** How long a frame waits for its ack before it is sent again (µs). */
   readonly resendAfter_us: number;
-  /** The share of recent frames that had to be sent again: 0 on a clean link. */
+  /** The share of recent frames found corrupted (bad CRCs received, BAD_CRC nacks): 0 on a clean link. */
   readonly frameLoss: number;
   /** How long the oldest unacknowledged frame has waited since first sent (µs), 0 if none. */
   readonly oldestUnacked_us: number;
