@@ -6,9 +6,10 @@
  * worker) shares the browser's CPU.
  *
  * Their priority, `E2E_BOARDS_PRIORITY`:
- *  - `realtime` (the default): the process runs under SCHED_FIFO (`chrt`, which
- *    needs root or CAP_SYS_NICE), so it runs the moment a timer or a socket wakes
- *    it, ahead of every ordinary process: the nearest a process on the same cores
+ *  - `realtime` (the default): the process's main thread, where the boards run,
+ *    goes under SCHED_FIFO once the process listens (`chrt --pid`, which needs
+ *    root or CAP_SYS_NICE), so it runs the moment a timer or a socket wakes it,
+ *    ahead of every ordinary thread: the nearest a process on the same cores
  *    comes to a board's CPU of its own. It needs ~12 % of one core (three devices'
  *    firmware every 100 µs of simulated time), so it takes little from the
  *    others, and Linux keeps 5 % of each core for them whatever it does
@@ -51,37 +52,47 @@ export function boardsPriority(env: NodeJS.ProcessEnv = process.env): BoardsPrio
 }
 
 export async function startFakeBoards(asked = boardsPriority()): Promise<FakeBoards> {
-  // tsx runs the TypeScript (the core's, the fake's) as it is, in Node.
-  const node = [process.execPath, '--import', 'tsx', ENTRY];
-  let command = node;
-  let priority = 'nice 0, on equal terms with the browser';
-  if (asked === 'realtime') {
-    const refused = fifoRefused();
-    if (refused === null) {
-      command = ['chrt', '--fifo', String(FIFO_PRIORITY), ...node];
-      priority = `SCHED_FIFO ${FIFO_PRIORITY}`;
-    } else priority = `SCHED_FIFO was refused (${refused})`;
-  }
-  const ownSession = asked === 'nice' || (asked === 'realtime' && command === node);
-  const child = spawn(command[0], command.slice(1), { stdio: ['pipe', 'pipe', 'inherit'], detached: ownSession });
-  if (ownSession && child.pid !== undefined) priority = `${asked === 'realtime' ? `${priority}: ` : ''}${prioritise(child.pid, NICE)}`;
-  const url = await listeningUrl(child);
+  // tsx runs the TypeScript (the core's, the fake's) as it is, in Node. The process starts at
+  // normal priority in a session (so an autogroup) of its own unless asked to be `equal`, and is
+  // raised once it listens (see promote()).
+  const ownSession = asked !== 'equal';
+  const child = spawn(process.execPath, ['--import', 'tsx', ENTRY], { stdio: ['pipe', 'pipe', 'inherit'], detached: ownSession });
+  const url = await listeningUrl(child).catch((err: Error) => {
+    // Not left running (and at whatever priority) after a failed start.
+    child.kill('SIGKILL');
+    throw err;
+  });
+  const priority = child.pid === undefined ? 'nice 0 (no pid to raise)' : promote(child.pid, asked);
   // Its later output (a firmware's trap, say) goes to the spec's.
   child.stdout!.on('data', (text: string) => process.stdout.write(`fake boards: ${text}`));
   return { url, priority, process: child };
+}
+
+/**
+ * Raises the listening boards' process as asked, and says what it got. Under
+ * `realtime` only its main thread (whose pid is the process's), where the boards'
+ * loops and sockets run, goes to SCHED_FIFO: V8's and libuv's helper threads and
+ * tsx's esbuild stay ordinary. A whole process under SCHED_FIFO livelocked at
+ * start-up on a busy core (measured: `taskset -c 0 chrt --fifo 10 node --import
+ * tsx fakeBoardsProcess.ts` never listened in 120 s, two of its threads spinning
+ * at 95 % each, where it listens in ~1 s with the main thread raised afterwards),
+ * which is how CI saw "the fake boards did not start within 30 s".
+ */
+function promote(pid: number, asked: BoardsPriority): string {
+  if (asked === 'equal') return 'nice 0, on equal terms with the browser';
+  if (asked === 'realtime') {
+    const fifo = spawnSync('chrt', ['--fifo', '--pid', String(FIFO_PRIORITY), String(pid)], { encoding: 'utf8' });
+    if (!fifo.error && fifo.status === 0) return `SCHED_FIFO ${FIFO_PRIORITY} (its main thread)`;
+    const why = fifo.error ? `chrt: ${fifo.error.message}` : fifo.stderr.trim() || `chrt exited ${fifo.status}`;
+    return `SCHED_FIFO was refused (${why}): ${prioritise(pid, NICE)}`;
+  }
+  return prioritise(pid, NICE);
 }
 
 export function stopFakeBoards(boards: FakeBoards | undefined): void {
   if (!boards) return;
   boards.process.stdin?.end();
   if (boards.process.exitCode === null && boards.process.signalCode === null) boards.process.kill('SIGTERM');
-}
-
-/** Null if this system lets us run a process under SCHED_FIFO, else why not. */
-function fifoRefused(): string | null {
-  const probe = spawnSync('chrt', ['--fifo', String(FIFO_PRIORITY), 'true'], { encoding: 'utf8' });
-  if (probe.error) return `chrt: ${probe.error.message}`;
-  return probe.status === 0 ? null : probe.stderr.trim() || `chrt exited ${probe.status}`;
 }
 
 /** Gives process `pid` (a session leader) nice `nice`, and its autogroup too where there is one; says what it got. */
@@ -104,7 +115,7 @@ function prioritise(pid: number, nice: number): string {
 /** The server's address, from the process's first line of output. */
 function listeningUrl(child: ChildProcess): Promise<string> {
   return new Promise<string>((resolve, reject) => {
-    const timer = setTimeout(() => reject(new Error(`the fake boards did not start within ${STARTUP_MS / 1000} s`)), STARTUP_MS);
+    const timer = setTimeout(() => reject(new Error(`the fake boards did not start within ${STARTUP_MS / 1000} s; they printed: ${JSON.stringify(out)}`)), STARTUP_MS);
     let out = '';
     child.stdout!.setEncoding('utf8');
     const onData = (text: string) => {
