@@ -20,6 +20,14 @@
  *
  *   leadMargin = startMargin = burst + timer + task = 5.28 + 4 + 4 = 13.28 ms
  *
+ * The timer and task terms are the author's thread coming late, on a quiet
+ * machine. A busy one holds that thread back for tens of ms now and then, more
+ * than a PING that happened not to wait behind it shows. So the streamer also
+ * measures how late its pumps come, and whatever they came later than timer +
+ * task (8 ms) in the last 10 s is added to the lead and the start lead
+ * (`lagAllowance_us`, core/net/pumpLag.ts): 13.28 ms stays the margin where the
+ * machine keeps to it, and a loaded machine gets the lead its hold-backs need.
+ *
  * At USB round trips (1.5–3 ms for a USB full-speed CDC board; ~3 ms for the
  * USB bridge of an Uno) the lead is 2·3 + 13.28 = 19.3 ms ≤ 20 ms. Before the
  * ports moved into the worker, every byte crossed the page's main thread, whose
@@ -42,7 +50,7 @@ export const TIMER_CLAMP_US = 4_000;
 export const WORKER_TASK_US = 4_000;
 
 /** Margins for ports bridged through the page (workers without Web Serial/WebUSB). */
-export const BRIDGED_STREAMER: Partial<StreamerOptions> = { minLead_us: 80_000, leadMargin_us: 80_000, startMargin_us: 80_000 };
+export const BRIDGED_STREAMER: Partial<StreamerOptions> = { minLead_us: 80_000, leadMargin_us: 80_000, startMargin_us: 80_000, lagAllowance_us: 80_000 };
 
 export interface RealLink {
   /** bytes/s the link carries to the board; undefined when unknown */
@@ -61,5 +69,5 @@ export function realBoardStreamer(links: readonly RealLink[]): Partial<StreamerO
   if (links.some((l) => l.bridged)) return BRIDGED_STREAMER;
   const burst = Math.max(0, ...links.map((l) => burst_us(l.bytesPerSecond)));
   const margin = Math.round(burst + TIMER_CLAMP_US + WORKER_TASK_US);
-  return { leadMargin_us: margin, startMargin_us: margin };
+  return { leadMargin_us: margin, startMargin_us: margin, lagAllowance_us: TIMER_CLAMP_US + WORKER_TASK_US };
 }

@@ -39,6 +39,7 @@ import type { Message, MessageOf } from './messages.ts';
 import { geometryMessages, type PositionSlot } from './segmentEncoding.ts';
 import { timingForPath } from './timedPath.ts';
 import { MAX_PAYLOAD } from './protocol.ts';
+import { PumpLag } from './pumpLag.ts';
 
 /** What one device reads of the trajectory, and how to reach it. */
 export interface DeviceBinding {
@@ -72,6 +73,15 @@ export interface StreamerOptions {
   refill_us: number;
   /** pump period while anything moves or waits (µs) */
   tick_us: number;
+  /**
+   * The part of the margins (µs) meant for the author's own thread coming late (a
+   * timer's clamp, a long task): whatever the pumps of the last `lagWindow_us` came
+   * later than this is added to the lead and to the start lead (pumpLag.ts).
+   * Infinity (the default): the lead does not follow the pumps' lateness.
+   */
+  lagAllowance_us: number;
+  /** how far back (µs) the pumps' lateness is remembered */
+  lagWindow_us: number;
 }
 
 export const DEFAULT_STREAMER: StreamerOptions = {
@@ -82,6 +92,8 @@ export const DEFAULT_STREAMER: StreamerOptions = {
   wholeSegment_us: 50_000,
   refill_us: 2_000,
   tick_us: 1_000,
+  lagAllowance_us: Infinity,
+  lagWindow_us: 10_000_000,
 };
 
 /** How rarely a frame may miss its lead on a lossy link (resendAllowance_us). */
@@ -145,7 +157,8 @@ export class Streamer {
   private readonly wireLog = new Map<number, Segment>();
   private readonly wireOrder: Array<{ seg: Segment; id: number }> = [];
   /** When the last pump ran, and where the timed path ended after it (author µs). */
-  private lastPump: { at_us: number; timedEnd_us: number; more: boolean } | null = null;
+  private lastPump: { at_us: number; timedEnd_us: number; more: boolean; stalled: boolean } | null = null;
+  private readonly pumpLag: PumpLag;
   /** The latest reason the devices could run out of timing (runOutReason). */
   private holdBack: { at_us: number; text: string } | null = null;
 
@@ -161,6 +174,7 @@ export class Streamer {
     this.devices = devices.map((binding) => ({ binding, timedEnd: null, timedEndAuthor: NaN, needP0: true, pendingEvents: [], geometryLog: [], unanswered: 0 }));
     this.onEvent = onEvent;
     this.options = { ...DEFAULT_STREAMER, ...options };
+    this.pumpLag = new PumpLag(this.options.lagWindow_us);
   }
 
   /**
@@ -194,11 +208,17 @@ export class Streamer {
     return worst;
   }
 
-  /** µs of motion kept ahead: 2·RTT (the slowest device's recent worst) plus a margin, plus the resend allowance. */
+  /** µs of the pumps' recent lateness beyond what the margins allow for it (lagAllowance_us). */
+  private get lagExcess_us(): number {
+    if (!Number.isFinite(this.options.lagAllowance_us)) return 0;
+    return Math.max(0, this.pumpLag.worst_us(this.scheduler.now()) - this.options.lagAllowance_us);
+  }
+
+  /** µs of motion kept ahead: 2·RTT (the slowest device's recent worst) plus a margin, plus the resend allowance and the pumps' excess lateness. */
   get lead_us(): number {
     let worst = 0;
     for (const d of this.devices) worst = Math.max(worst, 2 * d.binding.device.rttHigh_us + this.resendAllowance_us(d.binding.device));
-    return Math.max(this.options.minLead_us, worst + this.options.leadMargin_us);
+    return Math.max(this.options.minLead_us, worst + this.options.leadMargin_us + this.lagExcess_us);
   }
 
   /** A frame unacknowledged for this long (µs) holds all timing back: a high round trip plus 1 ms, plus the resend allowance. */
@@ -206,9 +226,9 @@ export class Streamer {
     return Math.max(3_000, this.slowestTrip_us + 1_000);
   }
 
-  /** µs from now to the start of a segment after rest: one RTT (the slowest device's worst) plus a margin, plus the resend allowance. */
+  /** µs from now to the start of a segment after rest: one RTT (the slowest device's worst) plus a margin, plus the resend allowance and the pumps' excess lateness. */
   get startLead_us(): number {
-    return this.slowestTrip_us + this.options.startMargin_us;
+    return this.slowestTrip_us + this.options.startMargin_us + this.lagExcess_us;
   }
 
   start(): void {
@@ -346,6 +366,7 @@ export class Streamer {
     if (this.tickTimer) this.tickTimer.cancel();
     this.tickTimer = this.scheduler.at(at, () => {
       this.tickTimer = null;
+      this.pumpLag.note(at, this.scheduler.now());
       this.pump();
     });
   }
@@ -440,7 +461,7 @@ export class Streamer {
     this.extendGeometry();
     this.send(newlyTimed);
     const more = this.queue.untransmittedCount > 0 && this.holdAt !== this.queue.peekUntransmitted();
-    this.lastPump = { at_us: now, timedEnd_us: this.queue.transmittedEnd_us, more };
+    this.lastPump = { at_us: now, timedEnd_us: this.queue.transmittedEnd_us, more, stalled };
 
     if (this.idle) {
       const waiters = this.idleWaiters;
@@ -460,10 +481,12 @@ export class Streamer {
    * the one before left had ended, while more was queued to send (the devices had
    * run out before the author could send it). A late pump is the reason even if it
    * also finds acks overdue: they may be waiting, unread, in its own thread's queue.
+   * But not after a pump that an overdue ack held back: the timed path ran down
+   * while nothing could be sent, and that pump already noted whose ack it was.
    */
   private noteHoldBack(now: number, stalled: boolean): void {
     const last = this.lastPump;
-    if (last && last.more && last.timedEnd_us > last.at_us && now > last.timedEnd_us) {
+    if (last && last.more && !last.stalled && last.timedEnd_us > last.at_us && now > last.timedEnd_us) {
       const gap_ms = ((now - last.at_us) / 1000).toFixed(1);
       const ahead_ms = ((last.timedEnd_us - last.at_us) / 1000).toFixed(1);
       this.holdBack = { at_us: now, text: `the author's next pump came ${gap_ms} ms after the one before, when only ${ahead_ms} ms of motion had been sent ahead (its thread was held back)` };

@@ -2,6 +2,8 @@
  * When devices run out of timing, the streamer says what held it back
  * (Streamer.runOutReason, which the runtime's LINK_LOST error carries): a device
  * whose ack is overdue, or a pump that came only after the timed path had ended.
+ * And a lead that follows how late the pumps have come (lagAllowance_us,
+ * pumpLag.ts), so that a thread held back once is covered the next time.
  */
 import { describe, expect, it } from 'vitest';
 import { lightPainter } from '../sim/presets/index.ts';
@@ -11,7 +13,7 @@ import type { Timer } from '../time/scheduler.ts';
 import { TrajectoryQueue } from '../trajectory/queue.ts';
 import { ClockMap } from './clockMap.ts';
 import type { SendResult, StreamDevice } from './streamDevice.ts';
-import { Streamer } from './streamer.ts';
+import { Streamer, type StreamerOptions } from './streamer.ts';
 
 /** A device that acknowledges at once, until told to hold its acks. */
 class AckingDevice implements StreamDevice {
@@ -33,6 +35,12 @@ class AckingDevice implements StreamDevice {
     return true;
   }
 
+  /** The held acks arrive (their frames stay unanswered here: only the overdue age matters). */
+  releaseAcks(): void {
+    this.holdAcks = false;
+    this.unackedSince = null;
+  }
+
   send(): Promise<SendResult> {
     this.lastSentSeq = (this.lastSentSeq + 1) & 0xff;
     if (!this.holdAcks) return Promise.resolve({ ok: true });
@@ -41,29 +49,31 @@ class AckingDevice implements StreamDevice {
   }
 }
 
-/** Virtual time whose first timer set for `from_us` or later fires `late_us` late: a thread held back once. */
-class HeldBackOnce extends VirtualScheduler {
+/** Virtual time whose first timer set for each of `from_us` or later fires `late_us` late: a thread held back once each time. */
+class HeldBack extends VirtualScheduler {
+  private readonly from_us: number[];
   constructor(
-    private from_us: number,
+    from_us: number | number[],
     private readonly late_us: number,
   ) {
     super(0);
+    this.from_us = [from_us].flat();
   }
 
   override at(at_us: number, callback: () => void): Timer {
-    if (at_us < this.from_us) return super.at(at_us, callback);
-    this.from_us = Infinity;
+    if (this.from_us.length === 0 || at_us < this.from_us[0]) return super.at(at_us, callback);
+    this.from_us.shift();
     return super.at(at_us + this.late_us, callback);
   }
 }
 
-function streamTo(scheduler: VirtualScheduler, names: string[]) {
+function streamTo(scheduler: VirtualScheduler, names: string[], options: Partial<StreamerOptions> = {}) {
   const config = resolveConfig(lightPainter().config);
   const queue = new TrajectoryQueue(config, [10, 10]);
   const devices = names.map(() => new AckingDevice(scheduler));
   const slots = config.motionAxes.map((_, index) => ({ space: 'motion' as const, index }));
   const bindings = names.map((name, i) => ({ name, device: devices[i], positionSlots: slots, eventSlots: new Map<number, number>(), capacity: 32 }));
-  const streamer = new Streamer(queue, scheduler, bindings, () => undefined);
+  const streamer = new Streamer(queue, scheduler, bindings, () => undefined, options);
   streamer.start();
   // 20 mm at 50 mm/s: ~0.4 s, sliced a few ms at a time.
   queue.append({ endPosition: [30, 10], maxVelocity: 50 });
@@ -83,13 +93,77 @@ describe('why devices ran out of timing (Streamer.runOutReason)', () => {
   });
 
   it("says that the author's pump came after the timed path had ended, and by how much", async () => {
-    const scheduler = new HeldBackOnce(100_000, 80_000);
+    const scheduler = new HeldBack(100_000, 80_000);
     const { streamer } = streamTo(scheduler, ['a']);
     await scheduler.runUntil(99_000);
     expect(streamer.runOutReason()).toBeNull();
     await scheduler.runUntil(200_000);
     // The pump due at 100 ms ran at 180 ms; the lead (2·1 ms + 2.5 ms) had long run out.
     expect(streamer.runOutReason()).toMatch(/^the author's next pump came 8\d\.\d ms after the one before, when only \d+\.\d ms of motion had been sent ahead \(its thread was held back\)$/);
+    streamer.stop();
+  });
+
+  it('after pumps that an overdue ack held back, names the ack, not the next pump that found the path ended', async () => {
+    const scheduler = new VirtualScheduler(0);
+    const { streamer, devices } = streamTo(scheduler, ['a', 'b']);
+    await scheduler.runUntil(100_000);
+    devices[1].holdAcks = true;
+    // The timed path (a 4.5 ms lead) ends while nothing can be sent; the pumps stay on time.
+    const reasons = new Set<string>();
+    for (let t = 100_500; t <= 120_000; t += 500) {
+      await scheduler.runUntil(t);
+      reasons.add(streamer.runOutReason(1_000) ?? 'none');
+    }
+    devices[1].releaseAcks();
+    await scheduler.runUntil(121_500);
+    reasons.add(streamer.runOutReason(1_000) ?? 'none');
+    expect([...reasons].filter((r) => r !== 'none' && !/^b had not acknowledged a frame for \d+\.\d ms/.test(r))).toEqual([]);
+    expect(streamer.runOutReason()).toMatch(/^b had not acknowledged a frame for \d+\.\d ms/);
+    streamer.stop();
+  });
+});
+
+describe('a lead that follows the pumps’ lateness (lagAllowance_us)', () => {
+  // The real boards' margins (app/worker/realBoardStreamer.ts): 13.28 ms, of which 8 ms for the thread's own lateness.
+  const REAL: Partial<StreamerOptions> = { leadMargin_us: 13_280, startMargin_us: 13_280, lagAllowance_us: 8_000 };
+
+  it('grows by what a pump came later than the allowance, and shrinks back a window later', async () => {
+    const scheduler = new HeldBack(100_000, 30_000);
+    const { streamer } = streamTo(scheduler, ['a'], { ...REAL, lagWindow_us: 200_000 });
+    await scheduler.runUntil(99_000);
+    // 2·RTT + margin: 2 + 13.28 ms.
+    expect(streamer.lead_us).toBe(15_280);
+    expect(streamer.startLead_us).toBe(14_280);
+    await scheduler.runUntil(140_000);
+    // The pump due at ≥ 100 ms ran 30 ms late: 22 ms beyond the allowance.
+    expect(streamer.lead_us).toBe(15_280 + 22_000);
+    expect(streamer.startLead_us).toBe(14_280 + 22_000);
+    await scheduler.runUntil(400_000);
+    expect(streamer.lead_us).toBe(15_280);
+    streamer.stop();
+  });
+
+  it('covers a hold-back like one it has seen, where a fixed margin runs out again', async () => {
+    for (const lagAllowance_us of [8_000, Infinity]) {
+      const scheduler = new HeldBack([100_000, 250_000], 30_000);
+      const { streamer } = streamTo(scheduler, ['a'], { ...REAL, lagAllowance_us });
+      await scheduler.runUntil(200_000);
+      // The first hold-back (30 ms against a 15.3 ms lead) ran the device out either way.
+      expect(streamer.runOutReason()).toMatch(/^the author's next pump came 3\d\.\d ms after the one before/);
+      await scheduler.runUntil(300_000);
+      const second = streamer.runOutReason(40_000);
+      if (lagAllowance_us === Infinity) expect(second).toMatch(/^the author's next pump came 3\d\.\d ms after the one before/);
+      else expect(second).toBeNull();
+      streamer.stop();
+    }
+  });
+
+  it('stays as it was by default (Infinity), whatever the pumps do', async () => {
+    const scheduler = new HeldBack(100_000, 30_000);
+    const { streamer } = streamTo(scheduler, ['a']);
+    await scheduler.runUntil(140_000);
+    // 2·1 ms + DEFAULT_STREAMER's 2.5 ms.
+    expect(streamer.lead_us).toBe(4_500);
     streamer.stop();
   });
 });

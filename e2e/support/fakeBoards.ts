@@ -6,10 +6,9 @@
  * worker) shares the browser's CPU.
  *
  * Their priority, `E2E_BOARDS_PRIORITY`:
- *  - `realtime` (the default): the process's main thread, where the boards run,
- *    goes under SCHED_FIFO once the process listens (`chrt --pid`, which needs
- *    root or CAP_SYS_NICE), so it runs the moment a timer or a socket wakes it,
- *    ahead of every ordinary thread: the nearest a process on the same cores
+ *  - `realtime` (the default): the process goes under SCHED_FIFO once it listens
+ *    (`chrt --all-tasks --pid`, which needs root or CAP_SYS_NICE), so it runs the
+ *    moment a timer or a socket wakes it, ahead of every ordinary process: the nearest a process on the same cores
  *    comes to a board's CPU of its own. It needs ~12 % of one core (three devices'
  *    firmware every 100 µs of simulated time), so it takes little from the
  *    others, and Linux keeps 5 % of each core for them whatever it does
@@ -70,19 +69,23 @@ export async function startFakeBoards(asked = boardsPriority()): Promise<FakeBoa
 
 /**
  * Raises the listening boards' process as asked, and says what it got. Under
- * `realtime` only its main thread (whose pid is the process's), where the boards'
- * loops and sockets run, goes to SCHED_FIFO: V8's and libuv's helper threads and
- * tsx's esbuild stay ordinary. A whole process under SCHED_FIFO livelocked at
- * start-up on a busy core (measured: `taskset -c 0 chrt --fifo 10 node --import
- * tsx fakeBoardsProcess.ts` never listened in 120 s, two of its threads spinning
- * at 95 % each, where it listens in ~1 s with the main thread raised afterwards),
- * which is how CI saw "the fake boards did not start within 30 s".
+ * `realtime` its threads go to SCHED_FIFO only once it listens, its start-up
+ * (tsx compiling the TypeScript through esbuild, a process of its own that stays
+ * ordinary; V8 compiling the firmware) done at normal priority: a process started
+ * under SCHED_FIFO livelocked there on a busy core (`taskset -c 0 chrt --fifo 10
+ * node --import tsx fakeBoardsProcess.ts` on a clean clone never listened in
+ * 120 s, two of its threads spinning at 95 % each; raised afterwards, it listens
+ * in ~1 s), which is how CI saw "the fake boards did not start within 30 s".
+ * All its threads, not only the main one: with V8's helper threads left ordinary,
+ * the main thread waited on them (a garbage collection) and single wakes of the
+ * boards ran 12–49 ms (worstRun_ms, 5 runs under load ~7), against under 1.5 ms
+ * with every thread raised.
  */
 function promote(pid: number, asked: BoardsPriority): string {
   if (asked === 'equal') return 'nice 0, on equal terms with the browser';
   if (asked === 'realtime') {
-    const fifo = spawnSync('chrt', ['--fifo', '--pid', String(FIFO_PRIORITY), String(pid)], { encoding: 'utf8' });
-    if (!fifo.error && fifo.status === 0) return `SCHED_FIFO ${FIFO_PRIORITY} (its main thread)`;
+    const fifo = spawnSync('chrt', ['--all-tasks', '--fifo', '--pid', String(FIFO_PRIORITY), String(pid)], { encoding: 'utf8' });
+    if (!fifo.error && fifo.status === 0) return `SCHED_FIFO ${FIFO_PRIORITY}`;
     const why = fifo.error ? `chrt: ${fifo.error.message}` : fifo.stderr.trim() || `chrt exited ${fifo.status}`;
     return `SCHED_FIFO was refused (${why}): ${prioritise(pid, NICE)}`;
   }
