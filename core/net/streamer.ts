@@ -221,9 +221,13 @@ export class Streamer {
     return Math.max(this.options.minLead_us, worst + this.options.leadMargin_us + this.lagExcess_us);
   }
 
-  /** A frame unacknowledged for this long (µs) holds all timing back: a high round trip plus 1 ms, plus the resend allowance. */
+  /**
+   * A frame unacknowledged for this long (µs) holds all timing back: a high round
+   * trip plus 1 ms, plus the resend allowance, plus the pumps' excess lateness (the
+   * author's thread reads the acks: held back, it reads them late).
+   */
   get stallLimit_us(): number {
-    return Math.max(3_000, this.slowestTrip_us + 1_000);
+    return Math.max(3_000, this.slowestTrip_us + 1_000 + this.lagExcess_us);
   }
 
   /** µs from now to the start of a segment after rest: one RTT (the slowest device's worst) plus a margin, plus the resend allowance and the pumps' excess lateness. */
@@ -481,15 +485,19 @@ export class Streamer {
    * the one before left had ended, while more was queued to send (the devices had
    * run out before the author could send it). A late pump is the reason even if it
    * also finds acks overdue: they may be waiting, unread, in its own thread's queue.
-   * But not after a pump that an overdue ack held back: the timed path ran down
-   * while nothing could be sent, and that pump already noted whose ack it was.
+   * After a pump that an overdue ack held back, both are said: the timed path ran
+   * down while nothing could be sent, then ended before the next pump.
    */
   private noteHoldBack(now: number, stalled: boolean): void {
     const last = this.lastPump;
-    if (last && last.more && !last.stalled && last.timedEnd_us > last.at_us && now > last.timedEnd_us) {
+    if (last && last.more && last.timedEnd_us > last.at_us && now > last.timedEnd_us) {
       const gap_ms = ((now - last.at_us) / 1000).toFixed(1);
       const ahead_ms = ((last.timedEnd_us - last.at_us) / 1000).toFixed(1);
-      this.holdBack = { at_us: now, text: `the author's next pump came ${gap_ms} ms after the one before, when only ${ahead_ms} ms of motion had been sent ahead (its thread was held back)` };
+      const text =
+        last.stalled && this.holdBack
+          ? `${this.holdBack.text}; the author's next pump came ${gap_ms} ms after that, when ${ahead_ms} ms of motion were left`
+          : `the author's next pump came ${gap_ms} ms after the one before, when only ${ahead_ms} ms of motion had been sent ahead (its thread was held back)`;
+      this.holdBack = { at_us: now, text };
       return;
     }
     if (!stalled) return;

@@ -103,7 +103,7 @@ describe('why devices ran out of timing (Streamer.runOutReason)', () => {
     streamer.stop();
   });
 
-  it('after pumps that an overdue ack held back, names the ack, not the next pump that found the path ended', async () => {
+  it('after pumps that an overdue ack held back, names the ack, and the next pump that found the path ended', async () => {
     const scheduler = new VirtualScheduler(0);
     const { streamer, devices } = streamTo(scheduler, ['a', 'b']);
     await scheduler.runUntil(100_000);
@@ -118,6 +118,8 @@ describe('why devices ran out of timing (Streamer.runOutReason)', () => {
     await scheduler.runUntil(121_500);
     reasons.add(streamer.runOutReason(1_000) ?? 'none');
     expect([...reasons].filter((r) => r !== 'none' && !/^b had not acknowledged a frame for \d+\.\d ms/.test(r))).toEqual([]);
+    // The pump after the last stalled one found the path ended: both are said.
+    expect([...reasons].filter((r) => /; the author's next pump came 1\.0 ms after that, when 0\.\d ms of motion were left$/.test(r))).toHaveLength(1);
     expect(streamer.runOutReason()).toMatch(/^b had not acknowledged a frame for \d+\.\d ms/);
     streamer.stop();
   });
@@ -127,17 +129,20 @@ describe('a lead that follows the pumps’ lateness (lagAllowance_us)', () => {
   // The real boards' margins (app/worker/realBoardStreamer.ts): 13.28 ms, of which 8 ms for the thread's own lateness.
   const REAL: Partial<StreamerOptions> = { leadMargin_us: 13_280, startMargin_us: 13_280, lagAllowance_us: 8_000 };
 
-  it('grows by what a pump came later than the allowance, and shrinks back a window later', async () => {
+  it('grows by what a pump came later than the allowance, with the stall limit, and shrinks back a window later', async () => {
     const scheduler = new HeldBack(100_000, 30_000);
     const { streamer } = streamTo(scheduler, ['a'], { ...REAL, lagWindow_us: 200_000 });
     await scheduler.runUntil(99_000);
     // 2·RTT + margin: 2 + 13.28 ms.
     expect(streamer.lead_us).toBe(15_280);
     expect(streamer.startLead_us).toBe(14_280);
+    expect(streamer.stallLimit_us).toBe(3_000);
     await scheduler.runUntil(140_000);
     // The pump due at ≥ 100 ms ran 30 ms late: 22 ms beyond the allowance.
     expect(streamer.lead_us).toBe(15_280 + 22_000);
     expect(streamer.startLead_us).toBe(14_280 + 22_000);
+    // And an ack may be late by as much before all timing is held back: RTT + 1 ms + 22 ms.
+    expect(streamer.stallLimit_us).toBe(1_000 + 1_000 + 22_000);
     await scheduler.runUntil(400_000);
     expect(streamer.lead_us).toBe(15_280);
     streamer.stop();
