@@ -100,15 +100,21 @@ export class PendingSegments {
 
   /**
    * Appends a single-segment linear move's segment at the end of the path: its id,
-   * its move (id and validated move), where it starts and its unit direction (both
-   * copied), and its cruise cap; its other planner inputs (length, acceleration,
-   * entry cap) are the planner's block, appended with it. The actuators at its start
-   * are kept by reference (the shared empty array without transforms).
+   * its move's id and fields (end position, copied; speed and acceleration caps,
+   * mm/s and mm/s², Infinity for the machine's; event specs and actuators at the end,
+   * by reference), where it starts and its unit direction (both copied), and its
+   * cruise cap; its other planner inputs (length, acceleration, entry cap) are the
+   * planner's block, appended with it. The actuators at its start are kept by
+   * reference (the shared empty array without transforms).
    */
   push(
     id: number,
     moveId: number,
-    move: ValidatedMove,
+    end: readonly number[],
+    maxVelocity: number,
+    maxAcceleration: number,
+    events: readonly ResolvedEventSpec[],
+    actuatorEnd: number[] | null,
     start: readonly number[],
     unit: readonly number[],
     cruise2: number,
@@ -120,19 +126,18 @@ export class PendingSegments {
     this.ids[s] = id;
     this.moveIds[s] = moveId;
     this.cruise2s[s] = cruise2;
-    this.maxVelocities[s] = move.maxVelocity;
-    this.maxAccelerations[s] = move.maxAcceleration;
+    this.maxVelocities[s] = maxVelocity;
+    this.maxAccelerations[s] = maxAcceleration;
     const a = this.axes;
     const o = s * a;
-    const end = move.end;
     for (let i = 0; i < a; i++) {
       this.starts[o + i] = start[i];
       this.ends[o + i] = end[i];
       this.units[o + i] = unit[i];
     }
-    this.events[s] = move.events;
+    this.events[s] = events;
     this.actuatorStarts[s] = actuatorStart;
-    this.actuatorEnds[s] = move.actuatorEnd;
+    this.actuatorEnds[s] = actuatorEnd;
   }
 
   /**
