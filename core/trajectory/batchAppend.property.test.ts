@@ -121,6 +121,67 @@ describe('the batch producer API', () => {
     );
   });
 
+  it('plans a fine path deeper than the capacity as single appends do, handing final segments over in runs', () => {
+    // Steps of 1–50 µm at up to 250 mm/s: braking needs hundreds of them, more than the capacity,
+    // so the batch producer may queue a run of final segments past what a single add could.
+    const step = fc.record({ length: fc.double({ min: 0.001, max: 0.05, noNaN: true }), turn: fc.double({ min: -0.3, max: 0.3, noNaN: true }) });
+    fc.assert(
+      fc.property(fc.integer({ min: 8, max: 128 }), fc.integer({ min: 1, max: 64 }), fc.array(step, { minLength: 50, maxLength: 1500 }), (capacity, run, steps) => {
+        let [x, y, heading] = [0, 0, 0];
+        const moves: Move[] = steps.map(({ length, turn }) => {
+          heading += turn;
+          x += length * Math.cos(heading);
+          y += length * Math.sin(heading);
+          return { endPosition: [x, y] };
+        });
+        const c = config(false, capacity);
+        const single = machine(c, false);
+        const batch = machine(c, false);
+        expect(inRuns(batch, moves, run)).toEqual(oneByOne(single, moves));
+        expect(historyOf(batch)).toEqual(historyOf(single));
+      }),
+      { numRuns: 60 },
+    );
+  });
+
+  it('at a lookahead deeper than the capacity, queues a run of final segments more than a single add, and no more', () => {
+    // 20 000 chords of 3 µm round a circle: braking from 250 mm/s needs ~3 500 of them.
+    const r = (20_000 * 0.003) / (2 * Math.PI);
+    const moves: Move[] = Array.from({ length: 20_000 }, (_, k) => {
+      const theta = (2 * Math.PI * (k + 1)) / 20_000;
+      return { endPosition: [r * Math.cos(theta), r * Math.sin(theta)] };
+    });
+    const c: MaxlConfig = { motionAxes: ['x', 'y'], limits: LIMITS, queueCapacity: 512 };
+    const single = createMAXL(c, { initialPosition: [r, 0] });
+    const batch = createMAXL(c, { initialPosition: [r, 0] });
+    const qs = queueOf(single);
+    const qb = queueOf(batch);
+    const ds = new DryRun(qs);
+    const db = new DryRun(qb);
+    let deepestSingle = 0;
+    for (const m of moves) {
+      qs.append(m);
+      deepestSingle = Math.max(deepestSingle, qs.untransmittedCount);
+      ds.takeWhileFull();
+    }
+    let deepestBatch = 0;
+    let calls = 0;
+    for (let next = 0; next < moves.length; calls++) {
+      next = batch.addSegmentsNow(moves, next);
+      deepestBatch = Math.max(deepestBatch, qb.untransmittedCount);
+      db.takeWhileFull(64);
+    }
+    ds.finish();
+    db.finish();
+    expect(deepestSingle).toBeGreaterThan(3000);
+    expect(deepestBatch).toBeGreaterThan(deepestSingle);
+    expect(deepestBatch).toBeLessThanOrEqual(deepestSingle + 512 / 8);
+    // Runs, not one move a call.
+    expect(calls).toBeLessThan(moves.length / 32);
+    expect(db.duration_s).toBe(ds.duration_s);
+    expect(historyOf(batch)).toEqual(historyOf(single));
+  });
+
   it('appends only while there is room, and returns where it stopped', () => {
     const maxl = machine(config(false, 4), false);
     const moves: Move[] = Array.from({ length: 10 }, (_, i) => ({ endPosition: [i + 1, 0] }));

@@ -199,11 +199,11 @@ export abstract class QueueCore {
 
   /**
    * The batch producer's step: appends moves[from], moves[from + 1], … for as long as
-   * the queue has room (hasRoom, checked before each), and returns the index of the
-   * first move not appended (moves.length when all were). Each move is validated
-   * from the path's tail and appended exactly as append() would (the same segments,
-   * ids and plan as a loop of single appends with the same room checks), without a
-   * receipt per move. A bad move throws a MaxlError naming it (`moves[i]…`) with the
+   * the queue has room for a run (hasRoomForRun, checked before each), and returns
+   * the index of the first move not appended (moves.length when all were). Each move
+   * is validated from the path's tail and appended exactly as append() would (the
+   * same segments, ids and plan as a loop of single appends), without a receipt per
+   * move. A bad move throws a MaxlError naming it (`moves[i]…`) with the
    * moves before it appended and nothing of it. Producers waiting for room
    * (reserveSlot) must be served first: with any waiting it appends nothing.
    */
@@ -216,7 +216,7 @@ export abstract class QueueCore {
     // have copied each. Everything else takes the single-move path.
     let borrowed = false;
     try {
-      for (; i < moves.length && this.hasRoom(); i++) {
+      for (; i < moves.length && this.hasRoomForRun(); i++) {
         const move = moves[i];
         if (this.columnar && this.listeners.length === 0 && isPlainLine(this.config, move)) {
           const id = this.enqueueLine(move.endPosition, move.maxVelocity ?? Infinity, move.maxAcceleration ?? Infinity, NO_SPECS, NO_ACTUATORS, this.nextMoveId);
@@ -239,6 +239,22 @@ export abstract class QueueCore {
   /** Makes the tail position an array of the queue's own (a copy of one borrowed from a caller). */
   private ownTailPosition(): void {
     this.tail.position = this.tail.position.slice();
+  }
+
+  /**
+   * hasRoom(), or, at a lookahead deeper than the capacity, room for a run: while
+   * fewer than capacity / 8 untransmitted segments are final. Past the capacity the
+   * queue lets a producer in only while no segment is final, and on a fine path each
+   * append finalises about one, so a producer and an executor that waits for room
+   * would hand over one segment at a time; a batch producer may queue this many final
+   * segments more, so that the executor takes them as a run. The plan is the same
+   * (more path known never changes a final plan, and the executor still locks only
+   * final segments); the queue holds at most capacity / 8 segments more.
+   */
+  private hasRoomForRun(): boolean {
+    if (this.hasRoom()) return true;
+    const untransmitted = this.untransmitted + this.pending.size;
+    return this.gate.reserved === 0 && this.planner.plannedSize < this.capacity / 8 && untransmitted < MAX_LOOKAHEAD_SEGMENTS;
   }
 
   /** Validates moves[i] from the path's tail; a bad one throws with its index in the field (`moves[i].endPosition`). */
