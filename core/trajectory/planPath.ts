@@ -86,8 +86,8 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
     const row = locked + offset;
     columns.entry2s[row] = entry2;
     columns.exit2s[row] = exit2;
-    columns.durations[row] =
-      columns.dwells[row] === 1 ? columns.dwellSeconds[row] : trapezoidDuration(columns.lengths[row], entry2, exit2, columns.cruise2s[row], columns.accels[row]);
+    // (A dwell's duration is its own, written when it was appended.)
+    if (columns.dwells[row] !== 1) columns.durations[row] = trapezoidDuration(columns.lengths[row], entry2, exit2, columns.cruise2s[row], columns.accels[row]);
   });
   // The tail of the path: the last line's direction and cruise cap (null after rest), in two
   // alternating buffers so that a new direction never overwrites the one it is compared with.
@@ -122,7 +122,7 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
     if (dwell_s !== null) {
       // A dwell: length 0, entry and exit caps 0 (moves.ts dwellSegment).
       columns.dwells[n] = 1;
-      columns.dwellSeconds[n] = dwell_s;
+      columns.durations[n] = dwell_s;
       columns.accels[n] = restAccel;
       planner.append(0, restAccel, 0);
       prevUnit = null;
@@ -160,12 +160,10 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
   planner.planToRest();
   columns.count = n;
 
-  // The start times: each row's duration (timed as its plan became final) summed in path order.
+  // The duration: each row's (timed as its plan became final) summed in path order, as
+  // the start times are when first asked for (PathColumns.startTime).
   let t = 0;
-  for (let i = 0; i < n; i++) {
-    columns.startTimes[i] = t;
-    t += columns.durations[i];
-  }
+  for (let i = 0; i < n; i++) t += columns.durations[i];
   return new ColumnarPlannedPath(columns, t, skipped);
 }
 
