@@ -7,9 +7,9 @@
  * (a Segment, its unit vector, its timing) outlives several young-generation
  * collections, which copy it, then promote it: a profile of the planner bench
  * found the collector at 12–30 % of the time. Kept here, a queued segment costs
- * one slot of each column, allocated once: its move's numbers (end position, speed
- * and acceleration caps) are copied into columns, so the validated move and its
- * end array die young, and only what is shared (the move's event specs, usually
+ * one record of numbers (see RECORD_SCALARS below) and three references, allocated
+ * once: its move's numbers (end position, speed and acceleration caps) are copied
+ * into the record, so the validated move and its end array die young, and only what is shared (the move's event specs, usually
  * one empty array for all) or made by a transform (actuator positions) is
  * referenced. The validated move is made again, equal, when the object is.
  *
