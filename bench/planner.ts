@@ -2,16 +2,24 @@
  * npm run bench -- planner
  *
  * Plans four 100 000-segment paths (bench/paths.ts: a fine spiral, a raster, a random
- * walk and a finely flattened circle of 3 µm chords) two ways, at the default
+ * walk and a finely flattened circle of 3 µm chords) three ways, at the default
  * settings (queue capacity and all):
- *  - incremental: through the queue, one awaited addSegmentToQueue per point (the
- *    paper's Listing 2), drained by a DryRun (core/trajectory/dryRun.ts), an executor
- *    with no device that takes a segment whenever the queue has no room, then the
- *    rest at the end; one MAXL per path, kept across runs as a workbench keeps it
- *    across jobs;
+ *  - incremental, per point: through the queue, one awaited addSegmentToQueue per
+ *    point (the paper's Listing 2), drained by a DryRun (core/trajectory/dryRun.ts),
+ *    an executor with no device that takes a segment whenever the queue has no room
+ *    (takeWhileFull()), then the rest at the end; one MAXL per path, kept across runs
+ *    as a workbench keeps it across jobs;
+ *  - incremental, batch: the same queue and plan, fed by the batch API
+ *    (maxl.addSegmentsNow(moves, from): appends synchronously while there is room,
+ *    no promise per point) from the moves made once before the runs, as planPath's
+ *    are; the dry run, once it must take a segment, takes final ones until the queue
+ *    has room for a run of BATCH_RUN (as a streamer fills a board's buffer in runs:
+ *    takeWhileFull(BATCH_RUN)), so that the producer appends runs. Locking a final
+ *    segment changes no plan: the plan is the per-point loop's, which
+ *    durationRatio checks for both;
  *  - batch: planPath over the whole path.
  *
- * Figures, per path:
+ * Figures, per path and per way (incremental = per point, incrementalBatch, planPath):
  *  - segmentsPerSecond: segments planned (and, incrementally, locked and retired) per
  *    second of wall time, the median over RUNS timed runs after WARMUP runs;
  *  - coldSegmentsPerSecond: the same for the very first run on that path (a fresh
@@ -23,24 +31,30 @@
  *    process ran, so it compares trees measured at different loads better. The
  *    targets are set on the wall-time figure of a quiet run;
  *  - plannedDuration_s: the duration of the plan, s (the sum of the segments' durations);
- *  - durationRatio: incremental plannedDuration_s / planPath's (1 = the queue's
- *    lookahead found the time-optimal plan).
- * Top level: segmentsPerSecond, coldSegmentsPerSecond and cpuSegmentsPerSecond are
- * the worst path's incremental rates; worstDurationRatio the largest durationRatio;
- * worstPlanPathSpeedup the smallest planPath rate / incremental rate.
+ *  - durationRatio: the larger of the two incremental plannedDuration_s over
+ *    planPath's (1 = the queue's lookahead found the time-optimal plan).
+ * Top level (`api` names the call each is of):
+ *  - segmentsPerSecond, coldSegmentsPerSecond, cpuSegmentsPerSecond: the worst path's
+ *    incremental rates through the batch API (addSegmentsNow);
+ *  - perPoint: the same three through the awaited per-point addSegmentToQueue;
+ *  - worstDurationRatio: the largest durationRatio;
+ *  - worstPlanPathSpeedup: the smallest, over paths, of planPath's rate over the
+ *    faster incremental rate (the batch API's).
  *
  * Options: `--path NAME[,NAME…]` plans only the paths named (spiral, raster,
  * randomWalk, fineCircle), for profiling one path or comparing two trees quickly;
  * BENCH_RUNS (default 5) sets the timed runs per path.
  */
 import os from 'node:os';
-import { createMAXL, planPath } from '../core/index.ts';
+import { createMAXL, planPath, type Move } from '../core/index.ts';
 import { queueOf } from '../core/maxl.ts';
 import { DryRun } from '../core/trajectory/dryRun.ts';
 import { benchPaths, fineCircle, BENCH_LIMITS, type BenchPath } from './paths.ts';
 
 const RUNS = Number(process.env.BENCH_RUNS ?? 5);
 const WARMUP = 2;
+/** Segments of room the batch run's dry run makes at a time (see the header). */
+const BATCH_RUN = 64;
 
 /** The paths to plan: all four, or those named by `--path a,b`. */
 function selectedPaths(): BenchPath[] {
@@ -90,6 +104,23 @@ async function incremental(maxl: ReturnType<typeof machineFor>, path: BenchPath)
   return { seconds, cpuSeconds: cpuSecondsSince(c0), plannedDuration_s: dry.duration_s, segments: dry.segments };
 }
 
+/** The incremental plan through the batch API: runs of moves appended while there is room. */
+function incrementalBatch(maxl: ReturnType<typeof machineFor>, path: BenchPath, moves: readonly Move[]): Run {
+  maxl.addSegmentsNow([{ endPosition: path.start }]);
+  new DryRun(queueOf(maxl)).finish();
+  const dry = new DryRun(queueOf(maxl));
+  const c0 = process.cpuUsage();
+  const t0 = performance.now();
+  let next = 0;
+  while (next < moves.length) {
+    next = maxl.addSegmentsNow(moves, next);
+    dry.takeWhileFull(BATCH_RUN);
+  }
+  dry.finish();
+  const seconds = (performance.now() - t0) / 1000;
+  return { seconds, cpuSeconds: cpuSecondsSince(c0), plannedDuration_s: dry.duration_s, segments: dry.segments };
+}
+
 function batch(path: BenchPath): Run {
   const moves = path.points.map((end) => ({ end }));
   const c0 = process.cpuUsage();
@@ -112,57 +143,86 @@ function median(xs: number[]): number {
 const rate = (r: Run) => r.segments / r.seconds;
 const cpuRate = (r: Run) => r.segments / r.cpuSeconds;
 
+/** A way of planning measured on one path: its cold run, then its timed runs. */
+interface Measured {
+  cold: Run;
+  runs: Run[];
+}
+
+/** Runs `once` WARMUP times (the first is the cold run), then RUNS timed times. */
+async function measure(once: () => Run | Promise<Run>): Promise<Measured> {
+  const cold = await once();
+  for (let r = 1; r < WARMUP; r++) await once();
+  const runs: Run[] = [];
+  for (let r = 0; r < RUNS; r++) runs.push(await once());
+  return { cold, runs };
+}
+
+function figures(m: Measured) {
+  return {
+    segmentsPerSecond: Math.round(median(m.runs.map(rate))),
+    coldSegmentsPerSecond: Math.round(rate(m.cold)),
+    cpuSegmentsPerSecond: Math.round(median(m.runs.map(cpuRate))),
+    plannedDuration_s: +m.runs[0].plannedDuration_s.toFixed(4),
+  };
+}
+
+type Figures = ReturnType<typeof figures>;
+
+/** The worst (smallest) of each rate over the paths. */
+function worstOf(all: Figures[]) {
+  return {
+    segmentsPerSecond: Math.min(...all.map((f) => f.segmentsPerSecond)),
+    coldSegmentsPerSecond: Math.min(...all.map((f) => f.coldSegmentsPerSecond)),
+    cpuSegmentsPerSecond: Math.min(...all.map((f) => f.cpuSegmentsPerSecond)),
+  };
+}
+
 const results: Record<string, unknown> = {};
-let worst = Infinity;
-let worstCold = Infinity;
-let worstCpu = Infinity;
+const perPointFigures: Figures[] = [];
+const batchFigures: Figures[] = [];
 let worstDurationRatio = 0;
 let worstPlanPathSpeedup = Infinity;
 for (const path of selectedPaths()) {
-  // Incremental and batch runs are kept apart, so one's garbage does not land in the other's timing.
-  const maxl = machineFor(path);
-  const incCold = await incremental(maxl, path);
-  for (let r = 1; r < WARMUP; r++) await incremental(maxl, path);
-  const inc: Run[] = [];
-  for (let r = 0; r < RUNS; r++) inc.push(await incremental(maxl, path));
-  const batCold = batch(path);
-  for (let r = 1; r < WARMUP; r++) batch(path);
-  const bat: Run[] = [];
-  for (let r = 0; r < RUNS; r++) bat.push(batch(path));
-  const incRate = median(inc.map(rate));
-  const batRate = median(bat.map(rate));
-  const incCpuRate = median(inc.map(cpuRate));
-  const durationRatio = inc[0].plannedDuration_s / bat[0].plannedDuration_s;
-  worst = Math.min(worst, incRate);
-  worstCold = Math.min(worstCold, rate(incCold));
-  worstCpu = Math.min(worstCpu, incCpuRate);
+  // Each way's runs are kept apart, so one's garbage does not land in another's timing.
+  const perPointMaxl = machineFor(path);
+  const perPoint = await measure(() => incremental(perPointMaxl, path));
+  const batchMaxl = machineFor(path);
+  const moves: Move[] = path.points.map((p) => ({ endPosition: p }));
+  const inBatch = await measure(() => incrementalBatch(batchMaxl, path, moves));
+  const plan = await measure(() => batch(path));
+  const [p, b, pp] = [figures(perPoint), figures(inBatch), figures(plan)];
+  perPointFigures.push(p);
+  batchFigures.push(b);
+  const planned = plan.runs[0].plannedDuration_s;
+  const durationRatio = Math.max(perPoint.runs[0].plannedDuration_s, inBatch.runs[0].plannedDuration_s) / planned;
+  const fastest = Math.max(p.segmentsPerSecond, b.segmentsPerSecond);
   worstDurationRatio = Math.max(worstDurationRatio, durationRatio);
-  worstPlanPathSpeedup = Math.min(worstPlanPathSpeedup, batRate / incRate);
+  worstPlanPathSpeedup = Math.min(worstPlanPathSpeedup, pp.segmentsPerSecond / fastest);
   results[path.name] = {
     describe: path.describe,
-    segments: inc[0].segments,
-    incremental: {
-      segmentsPerSecond: Math.round(incRate),
-      coldSegmentsPerSecond: Math.round(rate(incCold)),
-      cpuSegmentsPerSecond: Math.round(incCpuRate),
-      plannedDuration_s: +inc[0].plannedDuration_s.toFixed(4),
-    },
-    planPath: {
-      segmentsPerSecond: Math.round(batRate),
-      coldSegmentsPerSecond: Math.round(rate(batCold)),
-      cpuSegmentsPerSecond: Math.round(median(bat.map(cpuRate))),
-      plannedDuration_s: +bat[0].plannedDuration_s.toFixed(4),
-    },
+    segments: perPoint.runs[0].segments,
+    incremental: p,
+    incrementalBatch: b,
+    planPath: pp,
     durationRatio: +durationRatio.toFixed(7),
   };
-  console.error(`${path.name}: incremental ${Math.round(incRate)} seg/s (cold ${Math.round(rate(incCold))}, per CPU second ${Math.round(incCpuRate)}), planPath ${Math.round(batRate)} seg/s, duration ratio ${durationRatio.toFixed(7)}`);
+  console.error(
+    `${path.name}: incremental per point ${p.segmentsPerSecond} seg/s (cold ${p.coldSegmentsPerSecond}, per CPU second ${p.cpuSegmentsPerSecond}), ` +
+      `batch ${b.segmentsPerSecond} seg/s (cold ${b.coldSegmentsPerSecond}, per CPU second ${b.cpuSegmentsPerSecond}), ` +
+      `planPath ${pp.segmentsPerSecond} seg/s, duration ratio ${durationRatio.toFixed(7)}`,
+  );
 }
+const worstBatch = worstOf(batchFigures);
 console.log(
   JSON.stringify({
     bench: 'planner',
-    segmentsPerSecond: Math.round(worst),
-    coldSegmentsPerSecond: Math.round(worstCold),
-    cpuSegmentsPerSecond: Math.round(worstCpu),
+    api: {
+      top: 'maxl.addSegmentsNow(moves, from), runs while there is room (the batch API)',
+      perPoint: 'await maxl.addSegmentToQueue(move), one per point',
+    },
+    ...worstBatch,
+    perPoint: worstOf(perPointFigures),
     target: 3_000_000,
     worstDurationRatio: +worstDurationRatio.toFixed(7),
     durationRatioTarget: 1.000001,
@@ -170,6 +230,7 @@ console.log(
     limits: BENCH_LIMITS,
     runs: RUNS,
     warmupRuns: WARMUP,
+    batchRun: BATCH_RUN,
     paths: results,
     machine: { cpu: os.cpus()[0]?.model, node: process.version, loadAverage1m: +os.loadavg()[0].toFixed(2) },
   }),

@@ -38,6 +38,15 @@ export class MaxlError extends Error {
   }
 }
 
+/**
+ * `err` as the error of one item of a batch: its field prefixed by `prefix`
+ * (`moves[3]` and `endPosition` give `moves[3].endPosition`), same code and words.
+ */
+export function errorAt(err: MaxlError, prefix: string): MaxlError {
+  const own = err.field === undefined ? err.message : err.message.slice(err.field.length + 2);
+  return new MaxlError(err.code, own, err.field === undefined ? prefix : `${prefix}.${err.field}`);
+}
+
 /** Shorthand for the most common case: a config field that is wrong. */
 export function configError(field: string, message: string): MaxlError {
   return new MaxlError('CONFIG_INVALID', message, field);

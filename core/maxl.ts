@@ -10,7 +10,7 @@
  */
 import { resolveConfig } from './config/validate.ts';
 import type { MaxlConfig, ResolvedConfig } from './config/types.ts';
-import { abortable, abortedError, MaxlError } from './errors.ts';
+import { abortable, abortedError, errorAt, MaxlError } from './errors.ts';
 import type { Move, ValidatedMove } from './trajectory/moves.ts';
 import { TrajectoryQueue, type MoveReceipt } from './trajectory/queue.ts';
 import { TrajectoryHistory } from './trajectory/history.ts';
@@ -63,6 +63,11 @@ export interface MaxlOptions {
 export interface WaitOptions {
   /** Aborting it rejects the wait with a MaxlError of code ABORTED, having changed nothing. */
   signal?: AbortSignal;
+}
+
+/** Whether `err` refuses a move's content (rather than the wait: ABORTED, QUEUE_CLOSED). */
+function isMoveError(err: MaxlError): boolean {
+  return err.code === 'MOVE_INVALID' || err.code === 'MOVE_DIMENSION' || err.code === 'SOFT_LIMIT';
 }
 
 /** The queue of each Maxl, for the core's own tests and benches (queueOf). */
@@ -132,6 +137,54 @@ export class Maxl {
       }
     }
     return this.appendWhenRoom(validated, signal);
+  }
+
+  /**
+   * The batch form of addSegmentToQueue, for callers with many moves at hand (an
+   * imported SVG or G-code file, a plotter job): appends moves[from], moves[from + 1],
+   * … synchronously for as long as the queue has room, and returns the index of the
+   * first move not appended (moves.length when all were). At a lookahead deeper than
+   * the queue's capacity (a finely flattened curve) it may go on while fewer than
+   * capacity / 8 queued segments are final, where a single add would wait, so that
+   * the executor takes them as a run: the plan is the same. Each move is validated
+   * and queued exactly as addSegmentToQueue would queue it (the same segments, ids
+   * and plan), without a promise or a receipt per move, which is most of the cost
+   * of a fine path. A bad move throws a MaxlError whose field names it
+   * (`moves[i].endPosition`), with the moves before it queued and nothing of it, as
+   * a loop of addSegmentToQueue stops there. While moves of addSegmentToQueue calls
+   * wait for room it appends nothing (they go first). addSegmentsToQueue waits for
+   * room; this never does.
+   */
+  addSegmentsNow(moves: readonly Move[], from = 0): number {
+    this.open();
+    if (!Array.isArray(moves)) throw new MaxlError('MOVE_INVALID', 'must be an array of moves', 'moves');
+    if (!Number.isInteger(from) || from < 0 || from > moves.length) {
+      throw new MaxlError('MOVE_INVALID', `must be an index from 0 to ${moves.length}, got ${String(from)}`, 'from');
+    }
+    if (this.pendingCount > 0) return from;
+    return this.trajectory.appendWhileRoom(moves, from);
+  }
+
+  /**
+   * Adds every move of `moves` in order, waiting for room as a loop of awaited
+   * addSegmentToQueue calls would, and resolves with moves.length once the last is
+   * queued. Runs of moves that fit go in synchronously (addSegmentsNow). It rejects
+   * at the first bad move (the field names it: `moves[i]…`), with the moves before
+   * it queued; `signal` gives up the wait for room (ABORTED), with the moves before
+   * the one that waited queued.
+   */
+  async addSegmentsToQueue(moves: readonly Move[], options?: WaitOptions): Promise<number> {
+    let i = this.addSegmentsNow(moves, 0);
+    while (i < moves.length) {
+      // No room (or earlier callers waiting): this move waits its turn, as a single add does.
+      try {
+        await this.addSegmentToQueue(moves[i], options);
+      } catch (err) {
+        throw err instanceof MaxlError && isMoveError(err) ? errorAt(err, `moves[${i}]`) : err;
+      }
+      i = this.addSegmentsNow(moves, i + 1);
+    }
+    return i;
   }
 
   private async appendWhenRoom(validated: ValidatedMove, signal: AbortSignal | undefined): Promise<MoveReceipt> {

@@ -115,7 +115,9 @@ export function resolveTransforms(configs: TransformConfig[] | undefined, motion
   });
 }
 
-const NONE: number[] = [];
+/** What actuatorPosition gives on a machine without transforms: one shared empty array. */
+export const NO_ACTUATORS: number[] = [];
+const NONE = NO_ACTUATORS;
 
 /** Every actuator axis's position at the motion-space point p, in config order. */
 export function actuatorPosition(transforms: readonly ResolvedTransform[], p: readonly number[]): number[] {

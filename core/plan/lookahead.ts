@@ -71,12 +71,15 @@
  * short the blocks: the depth is a braking distance, not a count of blocks.
  *
  * ## The store
- * Blocks are numbers only, kept in a ring of typed arrays (struct of arrays), one
- * column per quantity: length, accel, maxEntry2, entry2, exit2 and work, 48 bytes a
- * block. Block k (absolute: counted since the planner was made) lives at slot
- * k & mask. The ring doubles when full, so it holds as many blocks as braking needs
+ * Blocks are numbers only, kept in a ring: one Float64Array of records, six numbers
+ * a block side by side (length, accel, maxEntry2, entry2, exit2 and work, 48 bytes),
+ * rather than a column per quantity, because the blocks worked on are at the ring's
+ * two ends (appended at one, planned and locked at the other, thousands of blocks
+ * apart at a deep lookahead, out of the cache) and a record is one cache line where
+ * six columns are six. Block k (absolute: counted since the planner was made) lives
+ * at slot k & mask. The ring doubles when full, so it holds as many blocks as braking needs
  * without a fixed count, and allocates nothing per block. The candidate deque is a
- * second ring of the same capacity: its junctions all lie strictly inside the
+ * second ring of the same capacity (junction and C side by side): its junctions all lie strictly inside the
  * unlocked blocks (lockFront drops the one at the front junction), so it never
  * holds more entries than there are blocks. The owner keeps its own objects for the
  * blocks (the queue's segments) and hears of each final plan by offset from the
@@ -102,19 +105,25 @@ export type FinalListener = (offset: number, entry2: number, exit2: number) => v
 export type ProvisionalListener = (offset: number, entry2: number, exit2: number) => void;
 
 const INITIAL_CAPACITY = 1024;
+/**
+ * A block's numbers, side by side (see "The store"): its inputs (length, mm;
+ * acceleration limit, mm/s²; entry cap, mm²/s²), its entry and exit speeds², and W
+ * at its entry: Σ a·L over the unlocked blocks before it (since the last reset).
+ */
+const LENGTH = 0;
+const ACCEL = 1;
+const MAX_ENTRY2 = 2;
+const ENTRY2 = 3;
+const EXIT2 = 4;
+const WORK = 5;
+const BLOCK_STRIDE = 6;
 /** The largest store made up front (48 MB); more blocks than that grow it as they come. */
 const MAX_INITIAL_CAPACITY = 1 << 20;
 
 export class LookaheadPlanner {
-  // --- the block ring: block k at slot k & mask ---
+  // --- the block ring: block k at slot k & mask, its numbers at blocks[slot · BLOCK_STRIDE + field] ---
   private mask = INITIAL_CAPACITY - 1;
-  private lengths = new Float64Array(INITIAL_CAPACITY);
-  private accels = new Float64Array(INITIAL_CAPACITY);
-  private maxEntry2s = new Float64Array(INITIAL_CAPACITY);
-  private entry2s = new Float64Array(INITIAL_CAPACITY);
-  private exit2s = new Float64Array(INITIAL_CAPACITY);
-  /** W at each block's entry: Σ a·L over the unlocked blocks before it (since the last reset). */
-  private works = new Float64Array(INITIAL_CAPACITY);
+  private blocks = new Float64Array(INITIAL_CAPACITY * BLOCK_STRIDE);
   /** Absolute index of the front block (= blocks locked so far). */
   private first = 0;
   /** Absolute index one past the last block. */
@@ -127,8 +136,7 @@ export class LookaheadPlanner {
   private endWork = 0;
 
   // --- the suffix-minimum candidates: absolute junction indices and C values, entries [candHead, candTail) at slot & mask ---
-  private candJunctions = new Float64Array(INITIAL_CAPACITY);
-  private candValues = new Float64Array(INITIAL_CAPACITY);
+  private cands = new Float64Array(INITIAL_CAPACITY * 2);
   private candHead = 0;
   private candTail = 0;
   /** Set by backwardBound(): whether the end-of-path rest set the bound it returned. */
@@ -170,27 +178,27 @@ export class LookaheadPlanner {
 
   /** The final entry speed² of the block `offset` places after the front; meaningful only while isFinal(offset). */
   finalEntry2(offset: number): number {
-    return this.entry2s[(this.first + offset) & this.mask];
+    return this.blocks[((this.first + offset) & this.mask) * BLOCK_STRIDE + ENTRY2];
   }
 
   /** The final exit speed² of the block `offset` places after the front; meaningful only while isFinal(offset). */
   finalExit2(offset: number): number {
-    return this.exit2s[(this.first + offset) & this.mask];
+    return this.blocks[((this.first + offset) & this.mask) * BLOCK_STRIDE + EXIT2];
   }
 
   /** The length (mm) given for the block `offset` places after the front. */
   lengthAt(offset: number): number {
-    return this.lengths[(this.first + offset) & this.mask];
+    return this.blocks[((this.first + offset) & this.mask) * BLOCK_STRIDE + LENGTH];
   }
 
   /** The acceleration limit (mm/s²) given for the block `offset` places after the front. */
   accelAt(offset: number): number {
-    return this.accels[(this.first + offset) & this.mask];
+    return this.blocks[((this.first + offset) & this.mask) * BLOCK_STRIDE + ACCEL];
   }
 
   /** The entry cap (mm²/s²) given for the block `offset` places after the front. */
   maxEntry2At(offset: number): number {
-    return this.maxEntry2s[(this.first + offset) & this.mask];
+    return this.blocks[((this.first + offset) & this.mask) * BLOCK_STRIDE + MAX_ENTRY2];
   }
 
   /** Squared speed at which the front block (or the next block appended, if none) starts. */
@@ -204,17 +212,17 @@ export class LookaheadPlanner {
     const k = this.end;
     const slot = k & this.mask;
     const work = this.endWork;
-    this.lengths[slot] = length;
-    this.accels[slot] = accel;
-    this.maxEntry2s[slot] = maxEntry2;
-    this.works[slot] = work;
-    this.exit2s[slot] = 0;
+    this.blocks[slot * BLOCK_STRIDE + LENGTH] = length;
+    this.blocks[slot * BLOCK_STRIDE + ACCEL] = accel;
+    this.blocks[slot * BLOCK_STRIDE + MAX_ENTRY2] = maxEntry2;
+    this.blocks[slot * BLOCK_STRIDE + WORK] = work;
+    this.blocks[slot * BLOCK_STRIDE + EXIT2] = 0;
     if (k === this.first) {
       // The new block is the front: its entry is fixed, so junction k needs no candidate.
-      this.entry2s[slot] = this.frontEntry2;
+      this.blocks[slot * BLOCK_STRIDE + ENTRY2] = this.frontEntry2;
     } else {
       // Junction k was the end of the path, at rest; it is now interior, with its real cap.
-      this.entry2s[slot] = 0;
+      this.blocks[slot * BLOCK_STRIDE + ENTRY2] = 0;
       this.pushCandidate(k, maxEntry2 + 2 * work);
     }
     this.endWork = work + accel * length;
@@ -247,16 +255,16 @@ export class LookaheadPlanner {
     if (decidedNow) {
       // Not final yet: decide with what is known now (always stoppable: e ≤ b).
       const exit2 = this.frontExit2();
-      this.exit2s[slot] = exit2;
-      if (this.size > 1) this.entry2s[(this.first + 1) & this.mask] = exit2;
+      this.blocks[slot * BLOCK_STRIDE + EXIT2] = exit2;
+      if (this.size > 1) this.blocks[((this.first + 1) & this.mask) * BLOCK_STRIDE + ENTRY2] = exit2;
     } else {
       this.plannedCount--;
     }
-    const exit2 = this.exit2s[slot];
+    const exit2 = this.blocks[slot * BLOCK_STRIDE + EXIT2];
     this.frontEntry2 = exit2;
     this.first++;
     // The candidate at the new front junction is not needed any more (the front's entry is fixed).
-    while (this.candHead < this.candTail && this.candJunctions[this.candHead & this.mask] <= this.first) this.candHead++;
+    while (this.candHead < this.candTail && this.cands[(this.candHead & this.mask) * 2] <= this.first) this.candHead++;
     if (this.size === 0) this.reset();
     // Every operation leaves the planned pointer as far as it can go. Locking a front
     // that was already final changes neither the entry there nor any bound (W and C
@@ -269,9 +277,9 @@ export class LookaheadPlanner {
   /** The exit speed² that lockFront() would give the front block now. */
   frontExit2(): number {
     const slot = this.first & this.mask;
-    if (this.plannedCount > 0) return this.exit2s[slot];
+    if (this.plannedCount > 0) return this.blocks[slot * BLOCK_STRIDE + EXIT2];
     if (this.size === 1) return 0;
-    return Math.min(this.backwardBound(this.first + 1, false), this.entry2s[slot] + 2 * this.accels[slot] * this.lengths[slot]);
+    return Math.min(this.backwardBound(this.first + 1, false), this.blocks[slot * BLOCK_STRIDE + ENTRY2] + 2 * this.blocks[slot * BLOCK_STRIDE + ACCEL] * this.blocks[slot * BLOCK_STRIDE + LENGTH]);
   }
 
   /**
@@ -309,9 +317,9 @@ export class LookaheadPlanner {
     const slack = 1e-9 * (1 + e);
     if (count === 0) return e === 0;
     const slot = this.first & this.mask;
-    if (e > this.maxEntry2s[slot] + slack) return false;
+    if (e > this.blocks[slot * BLOCK_STRIDE + MAX_ENTRY2] + slack) return false;
     const after = count === 1 ? 0 : this.backwardBound(this.first + 1, false);
-    return e <= after + 2 * this.accels[slot] * this.lengths[slot] + slack;
+    return e <= after + 2 * this.blocks[slot * BLOCK_STRIDE + ACCEL] * this.blocks[slot * BLOCK_STRIDE + LENGTH] + slack;
   }
 
   /**
@@ -330,15 +338,15 @@ export class LookaheadPlanner {
     let next2 = 0;
     for (let k = end - 1; k > start; k--) {
       const s = k & m;
-      this.exit2s[s] = next2;
-      next2 = Math.min(this.maxEntry2s[s], next2 + 2 * this.accels[s] * this.lengths[s]);
+      this.blocks[s * BLOCK_STRIDE + EXIT2] = next2;
+      next2 = Math.min(this.blocks[s * BLOCK_STRIDE + MAX_ENTRY2], next2 + 2 * this.blocks[s * BLOCK_STRIDE + ACCEL] * this.blocks[s * BLOCK_STRIDE + LENGTH]);
     }
-    this.exit2s[start & m] = next2;
+    this.blocks[(start & m) * BLOCK_STRIDE + EXIT2] = next2;
     // Forward pass from the pointer's final entry.
-    let entry2 = this.entry2s[start & m];
+    let entry2 = this.blocks[(start & m) * BLOCK_STRIDE + ENTRY2];
     for (let k = start; k < end; k++) {
       const s = k & m;
-      const exit2 = Math.min(this.exit2s[s], entry2 + 2 * this.accels[s] * this.lengths[s]);
+      const exit2 = Math.min(this.blocks[s * BLOCK_STRIDE + EXIT2], entry2 + 2 * this.blocks[s * BLOCK_STRIDE + ACCEL] * this.blocks[s * BLOCK_STRIDE + LENGTH]);
       write(k - this.first, entry2, exit2);
       entry2 = exit2;
     }
@@ -349,15 +357,15 @@ export class LookaheadPlanner {
 
   private pushCandidate(junction: number, value: number): void {
     const m = this.mask;
-    while (this.candTail > this.candHead && this.candValues[(this.candTail - 1) & m] > value) this.candTail--;
+    while (this.candTail > this.candHead && this.cands[((this.candTail - 1) & m) * 2 + 1] > value) this.candTail--;
     const slot = this.candTail & m;
-    this.candJunctions[slot] = junction;
-    this.candValues[slot] = value;
+    this.cands[slot * 2] = junction;
+    this.cands[slot * 2 + 1] = value;
     this.candTail++;
   }
 
   private workAt(junction: number): number {
-    return junction < this.end ? this.works[junction & this.mask] : this.endWork;
+    return junction < this.end ? this.blocks[(junction & this.mask) * BLOCK_STRIDE + WORK] : this.endWork;
   }
 
   /**
@@ -370,9 +378,9 @@ export class LookaheadPlanner {
     const m = this.mask;
     let h = this.candHead;
     const t = this.candTail;
-    while (h < t && this.candJunctions[h & m] < junction) h++;
+    while (h < t && this.cands[(h & m) * 2] < junction) h++;
     if (consume) this.candHead = h;
-    const interior = h < t ? this.candValues[h & m] : Infinity;
+    const interior = h < t ? this.cands[(h & m) * 2 + 1] : Infinity;
     const end = 2 * this.endWork;
     this.boundSetByEnd = end < interior;
     return Math.min(interior, end) - 2 * this.workAt(junction);
@@ -385,7 +393,7 @@ export class LookaheadPlanner {
     let p = this.first + this.plannedCount;
     while (p < end) {
       const s = p & m;
-      const reach2 = this.entry2s[s] + 2 * this.accels[s] * this.lengths[s];
+      const reach2 = this.blocks[s * BLOCK_STRIDE + ENTRY2] + 2 * this.blocks[s * BLOCK_STRIDE + ACCEL] * this.blocks[s * BLOCK_STRIDE + LENGTH];
       let exit2: number;
       if (p + 1 === end) {
         if (!toRest) break;
@@ -394,11 +402,11 @@ export class LookaheadPlanner {
         const bound = this.backwardBound(p + 1);
         if (this.boundSetByEnd && reach2 > bound && !toRest) break;
         exit2 = Math.min(bound, reach2);
-        this.entry2s[(p + 1) & m] = exit2;
+        this.blocks[((p + 1) & m) * BLOCK_STRIDE + ENTRY2] = exit2;
       }
-      this.exit2s[s] = exit2;
+      this.blocks[s * BLOCK_STRIDE + EXIT2] = exit2;
       this.plannedCount++;
-      this.onFinal?.(p - this.first, this.entry2s[s], exit2);
+      this.onFinal?.(p - this.first, this.blocks[s * BLOCK_STRIDE + ENTRY2], exit2);
       p++;
     }
   }
@@ -420,7 +428,7 @@ export class LookaheadPlanner {
     const m = this.mask;
     for (let k = from; k < to; k++) {
       const s = k & m;
-      this.append(this.lengths[s], this.accels[s], this.maxEntry2s[s]);
+      this.append(this.blocks[s * BLOCK_STRIDE + LENGTH], this.blocks[s * BLOCK_STRIDE + ACCEL], this.blocks[s * BLOCK_STRIDE + MAX_ENTRY2]);
     }
   }
 
@@ -433,19 +441,16 @@ export class LookaheadPlanner {
   private resize(capacity: number): void {
     const oldMask = this.mask;
     const mask = capacity - 1;
-    const move = (column: Float64Array<ArrayBuffer>, from: number, to: number): Float64Array<ArrayBuffer> => {
-      const grown = new Float64Array(capacity);
-      for (let k = from; k < to; k++) grown[k & mask] = column[k & oldMask];
+    const move = (from: Float64Array<ArrayBuffer>, stride: number, first: number, end: number): Float64Array<ArrayBuffer> => {
+      const grown = new Float64Array(capacity * stride);
+      for (let k = first; k < end; k++) {
+        const o = (k & oldMask) * stride;
+        grown.set(from.subarray(o, o + stride), (k & mask) * stride);
+      }
       return grown;
     };
-    this.lengths = move(this.lengths, this.first, this.end);
-    this.accels = move(this.accels, this.first, this.end);
-    this.maxEntry2s = move(this.maxEntry2s, this.first, this.end);
-    this.entry2s = move(this.entry2s, this.first, this.end);
-    this.exit2s = move(this.exit2s, this.first, this.end);
-    this.works = move(this.works, this.first, this.end);
-    this.candJunctions = move(this.candJunctions, this.candHead, this.candTail);
-    this.candValues = move(this.candValues, this.candHead, this.candTail);
+    this.blocks = move(this.blocks, BLOCK_STRIDE, this.first, this.end);
+    this.cands = move(this.cands, 2, this.candHead, this.candTail);
     this.mask = mask;
   }
 }

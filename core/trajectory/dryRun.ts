@@ -6,7 +6,7 @@
  * executed the moment it was sent (time runs as fast as the plan is made), so the
  * queue never holds more than planning needs. Like a device session it takes a
  * segment only when it must: while the queue has no room for the producer
- * (`takeWhileFull`, after each add), and at the end, with the plan brought to
+ * (`takeWhileFull`, after each add; a run of final segments at once if asked), and at the end, with the plan brought to
  * rest (`finish`). A queue that waits for room therefore hands it only segments
  * whose plan is final (TrajectoryQueue.hasRoom), and the dry run's total duration
  * is the time-optimal one planPath gives for the same path.
@@ -40,9 +40,21 @@ export class DryRun {
     return seg;
   }
 
-  /** Takes segments until the producer has room again (what a producer loop calls after each add). */
-  takeWhileFull(): void {
-    while (!this.queue.hasRoom() && this.take());
+  /**
+   * Takes segments until the producer has room again (what a producer loop calls
+   * after each add). With `chunk` > 1, once it had to take one, it goes on taking
+   * while the front's plan is final (TrajectoryQueue.frontIsFinal) until the queue
+   * has room for `chunk` more segments below its capacity: as a device streamer
+   * fills a board's buffer in runs, so that a batch producer (addSegmentsNow)
+   * appends runs of moves, not one at a time. Locking a final segment changes no
+   * plan, so the segments taken, and their plan, are the same for every chunk.
+   */
+  takeWhileFull(chunk = 1): void {
+    const q = this.queue;
+    if (q.hasRoom()) return;
+    while (!q.hasRoom() && this.take());
+    const keep = q.capacity - chunk;
+    while (q.untransmittedCount > keep && q.frontIsFinal && this.take());
   }
 
   /** The path is complete: plans it to rest and takes every queued segment. */

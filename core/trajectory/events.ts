@@ -79,7 +79,8 @@ function finiteValue(field: string, value: unknown): number {
   return value;
 }
 
-const NO_SPECS: ResolvedEventSpec[] = [];
+/** What resolveMoveEvents gives a move that sets no event: one shared empty array. */
+export const NO_SPECS: ResolvedEventSpec[] = [];
 
 export function resolveMoveEvents(events: MoveEvents | undefined, channels: readonly string[]): ResolvedEventSpec[] {
   if (events === undefined) return NO_SPECS;

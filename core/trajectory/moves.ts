@@ -191,6 +191,48 @@ export function validateMove(config: ResolvedConfig, move: Move, from: readonly 
   return new ValidatedMove(end, maxVelocity, resolveMoveEvents(move.eventChannels, config.eventChannels), null, maxAcceleration, actuatorEnd);
 }
 
+/**
+ * Whether `target` is an end position validateMove takes as it is: an array of one
+ * number per motion axis, each within the soft limits and the track range (so
+ * finite). validateMove's end is then a copy of it, and its actuators the shared
+ * empty array on a machine without transforms. For batch callers that skip making
+ * the ValidatedMove of every plain move; any other goes through validateMove, which
+ * decides (and may refuse).
+ */
+export function isPlainEnd(config: ResolvedConfig, target: unknown): target is number[] {
+  if (!Array.isArray(target)) return false;
+  const n = config.motionAxes.length;
+  if (target.length !== n) return false;
+  const { softMin, softMax } = config;
+  for (let i = 0; i < n; i++) {
+    const v: unknown = target[i];
+    if (!(typeof v === 'number' && v >= softMin[i] && v <= softMax[i] && Math.abs(v) <= TRACK_POSITION_LIMIT_MM)) return false;
+  }
+  return true;
+}
+
+/** Whether a move's optional cap (maxVelocity with MIN_SPEED, maxAcceleration with MIN_ACCELERATION) is absent or one validateMove takes as it is. */
+export function isPlainCap(value: unknown, min: number): boolean {
+  return value === undefined || (typeof value === 'number' && value >= min && value < Infinity);
+}
+
+/**
+ * Whether validateMove(config, move) would return, without refusing it, a linear
+ * move with end = a copy of move.endPosition, the move's caps (Infinity when absent),
+ * no event (NO_SPECS) and no actuators (NO_ACTUATORS): a LinearMove that sets no
+ * event, with a plain end (isPlainEnd) and plain caps, on a machine without
+ * transforms.
+ */
+export function isPlainLine(config: ResolvedConfig, move: Move): move is LinearMove & { endPosition: number[] } {
+  if (config.transforms.length > 0 || move === null || typeof move !== 'object' || 'dwell_s' in move) return false;
+  return (
+    move.eventChannels === undefined &&
+    isPlainCap(move.maxVelocity, MIN_SPEED) &&
+    isPlainCap(move.maxAcceleration, MIN_ACCELERATION) &&
+    isPlainEnd(config, move.endPosition)
+  );
+}
+
 /** A dwell holds wherever the path is: it takes no end position and no speed, and lasts 0 to MAX_DWELL_S s. */
 function validateDwell(config: ResolvedConfig, move: DwellMove, from: readonly number[]): ValidatedMove {
   for (const field of ['endPosition', 'maxVelocity', 'maxAcceleration'] as const) {

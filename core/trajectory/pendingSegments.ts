@@ -7,9 +7,9 @@
  * (a Segment, its unit vector, its timing) outlives several young-generation
  * collections, which copy it, then promote it: a profile of the planner bench
  * found the collector at 12–30 % of the time. Kept here, a queued segment costs
- * one slot of each column, allocated once: its move's numbers (end position, speed
- * and acceleration caps) are copied into columns, so the validated move and its
- * end array die young, and only what is shared (the move's event specs, usually
+ * one record of numbers (see RECORD_SCALARS below) and three references, allocated
+ * once: its move's numbers (end position, speed and acceleration caps) are copied
+ * into the record, so the validated move and its end array die young, and only what is shared (the move's event specs, usually
  * one empty array for all) or made by a transform (actuator positions) is
  * referenced. The validated move is made again, equal, when the object is.
  *
@@ -64,35 +64,38 @@ export interface PendingFront {
   cruise2: number;
 }
 
-/** Doubles per slot in the position columns. */
-type Columns = Float64Array<ArrayBuffer>;
+/**
+ * A slot's numbers, side by side in one Float64Array (a record of RECORD_SCALARS + 3 ×
+ * axes numbers), not one column per quantity: the executor reads the oldest slot,
+ * which at a deep lookahead was written thousands of appends ago and is out of the
+ * cache, and one record is one or two cache lines where a column each was eleven.
+ */
+const ID = 0;
+const MOVE_ID = 1;
+const CRUISE2 = 2;
+/** The move's caps: mm/s and mm/s² (Infinity for the machine's limits). */
+const MAX_VELOCITY = 3;
+const MAX_ACCELERATION = 4;
+/** Then the start position, the end position and the unit vector, `axes` numbers each. */
+const RECORD_SCALARS = 5;
 
 export class PendingSegments {
   private readonly axes: number;
+  /** Numbers per slot. */
+  private readonly stride: number;
   private mask = INITIAL_CAPACITY - 1;
   private head = 0;
   private count = 0;
-  private ids: Columns = new Float64Array(INITIAL_CAPACITY);
-  private moveIds: Columns = new Float64Array(INITIAL_CAPACITY);
-  private cruise2s: Columns = new Float64Array(INITIAL_CAPACITY);
-  /** The move's caps: mm/s and mm/s² (Infinity for the machine's limits). */
-  private maxVelocities: Columns = new Float64Array(INITIAL_CAPACITY);
-  private maxAccelerations: Columns = new Float64Array(INITIAL_CAPACITY);
-  /** Start and end positions and unit vectors, `axes` numbers a slot. */
-  private starts: Columns;
-  private ends: Columns;
-  private units: Columns;
+  private records: Float64Array<ArrayBuffer>;
   private events: (readonly ResolvedEventSpec[] | undefined)[] = new Array(INITIAL_CAPACITY);
   private actuatorStarts: (number[] | undefined)[] = new Array(INITIAL_CAPACITY);
   private actuatorEnds: (number[] | null | undefined)[] = new Array(INITIAL_CAPACITY);
 
   constructor(axes: number) {
     this.axes = axes;
-    this.starts = new Float64Array(INITIAL_CAPACITY * axes);
-    this.ends = new Float64Array(INITIAL_CAPACITY * axes);
-    this.units = new Float64Array(INITIAL_CAPACITY * axes);
+    this.stride = RECORD_SCALARS + 3 * axes;
+    this.records = new Float64Array(INITIAL_CAPACITY * this.stride);
   }
-
   /** Segments held. */
   get size(): number {
     return this.count;
@@ -100,15 +103,21 @@ export class PendingSegments {
 
   /**
    * Appends a single-segment linear move's segment at the end of the path: its id,
-   * its move (id and validated move), where it starts and its unit direction (both
-   * copied), and its cruise cap; its other planner inputs (length, acceleration,
-   * entry cap) are the planner's block, appended with it. The actuators at its start
-   * are kept by reference (the shared empty array without transforms).
+   * its move's id and fields (end position, copied; speed and acceleration caps,
+   * mm/s and mm/s², Infinity for the machine's; event specs and actuators at the end,
+   * by reference), where it starts and its unit direction (both copied), and its
+   * cruise cap; its other planner inputs (length, acceleration, entry cap) are the
+   * planner's block, appended with it. The actuators at its start are kept by
+   * reference (the shared empty array without transforms).
    */
   push(
     id: number,
     moveId: number,
-    move: ValidatedMove,
+    end: readonly number[],
+    maxVelocity: number,
+    maxAcceleration: number,
+    events: readonly ResolvedEventSpec[],
+    actuatorEnd: number[] | null,
     start: readonly number[],
     unit: readonly number[],
     cruise2: number,
@@ -117,22 +126,23 @@ export class PendingSegments {
     if (this.count > this.mask) this.grow();
     const s = (this.head + this.count) & this.mask;
     this.count++;
-    this.ids[s] = id;
-    this.moveIds[s] = moveId;
-    this.cruise2s[s] = cruise2;
-    this.maxVelocities[s] = move.maxVelocity;
-    this.maxAccelerations[s] = move.maxAcceleration;
+    const r = this.records;
+    const o = s * this.stride;
+    r[o + ID] = id;
+    r[o + MOVE_ID] = moveId;
+    r[o + CRUISE2] = cruise2;
+    r[o + MAX_VELOCITY] = maxVelocity;
+    r[o + MAX_ACCELERATION] = maxAcceleration;
     const a = this.axes;
-    const o = s * a;
-    const end = move.end;
+    const p = o + RECORD_SCALARS;
     for (let i = 0; i < a; i++) {
-      this.starts[o + i] = start[i];
-      this.ends[o + i] = end[i];
-      this.units[o + i] = unit[i];
+      r[p + i] = start[i];
+      r[p + a + i] = end[i];
+      r[p + 2 * a + i] = unit[i];
     }
-    this.events[s] = move.events;
+    this.events[s] = events;
     this.actuatorStarts[s] = actuatorStart;
-    this.actuatorEnds[s] = move.actuatorEnd;
+    this.actuatorEnds[s] = actuatorEnd;
   }
 
   /**
@@ -156,17 +166,20 @@ export class PendingSegments {
     if (this.count === 0) throw new Error('PendingSegments.readFront: empty');
     const s = this.head;
     const a = this.axes;
+    const r = this.records;
+    const o = s * this.stride;
+    const p = o + RECORD_SCALARS;
     for (let i = 0; i < a; i++) {
-      out.start[i] = this.starts[s * a + i];
-      out.end[i] = this.ends[s * a + i];
-      out.unit[i] = this.units[s * a + i];
+      out.start[i] = r[p + i];
+      out.end[i] = r[p + a + i];
+      out.unit[i] = r[p + 2 * a + i];
     }
     out.events = this.events[s] as readonly ResolvedEventSpec[];
     out.actuatorStart = this.actuatorStarts[s] as number[];
     out.actuatorEnd = this.actuatorEnds[s] as number[] | null;
     out.length = blocks.lengthAt(0);
     out.accel = blocks.accelAt(0);
-    out.cruise2 = this.cruise2s[s];
+    out.cruise2 = r[o + CRUISE2];
     return out;
   }
 
@@ -194,19 +207,21 @@ export class PendingSegments {
   /** The Segment of slot s, as segmentsForMove (moves.ts) would have made it, with its plan if final (block `offset` of `plans`). */
   private segmentAt(s: number, plans: PlannerBlocks, offset: number): Segment {
     const a = this.axes;
-    const o = s * a;
-    const start = Array.from(this.starts.subarray(o, o + a));
-    const end = Array.from(this.ends.subarray(o, o + a));
-    const unit = Array.from(this.units.subarray(o, o + a));
+    const r = this.records;
+    const o = s * this.stride;
+    const p = o + RECORD_SCALARS;
+    const start = Array.from(r.subarray(p, p + a));
+    const end = Array.from(r.subarray(p + a, p + 2 * a));
+    const unit = Array.from(r.subarray(p + 2 * a, p + 3 * a));
     const actuatorEnd = this.actuatorEnds[s] as number[] | null;
-    const source = new ValidatedMove(end, this.maxVelocities[s], this.events[s] as ResolvedEventSpec[], null, this.maxAccelerations[s], actuatorEnd);
+    const source = new ValidatedMove(end, r[o + MAX_VELOCITY], this.events[s] as ResolvedEventSpec[], null, r[o + MAX_ACCELERATION], actuatorEnd);
     const length = plans.lengthAt(offset);
-    const seg = new Segment(this.ids[s], this.moveIds[s], start, end, unit, length, 0, source);
+    const seg = new Segment(r[o + ID], r[o + MOVE_ID], start, end, unit, length, 0, source);
     const a0 = this.actuatorStarts[s] as number[];
     seg.actuatorStart = a0;
     seg.actuatorRate = a0.length > 0 ? actuatorRate(a0, actuatorEnd as number[], length) : a0;
     seg.accel = plans.accelAt(offset);
-    seg.cruise2 = this.cruise2s[s];
+    seg.cruise2 = r[o + CRUISE2];
     seg.maxEntry2 = plans.maxEntry2At(offset);
     if (plans.isFinal(offset)) {
       seg.entry2 = plans.finalEntry2(offset);
@@ -227,29 +242,18 @@ export class PendingSegments {
   /** Doubles the ring, moving the entries to slots 0 … count − 1. */
   private grow(): void {
     const capacity = 2 * (this.mask + 1);
-    const order = <T extends Columns>(from: T, stride: number, make: (n: number) => T): T => {
-      const to = make(capacity * stride);
-      for (let i = 0; i < this.count; i++) {
-        const s = (this.head + i) & this.mask;
-        for (let k = 0; k < stride; k++) to[i * stride + k] = from[s * stride + k];
-      }
-      return to;
-    };
-    const f64 = (n: number): Columns => new Float64Array(n);
+    const stride = this.stride;
+    const records = new Float64Array(capacity * stride);
     const orderRefs = <T>(from: (T | undefined)[]): (T | undefined)[] => {
       const to = new Array<T | undefined>(capacity);
       for (let i = 0; i < this.count; i++) to[i] = from[(this.head + i) & this.mask];
       return to;
     };
-    const a = this.axes;
-    this.ids = order(this.ids, 1, f64);
-    this.moveIds = order(this.moveIds, 1, f64);
-    this.cruise2s = order(this.cruise2s, 1, f64);
-    this.maxVelocities = order(this.maxVelocities, 1, f64);
-    this.maxAccelerations = order(this.maxAccelerations, 1, f64);
-    this.starts = order(this.starts, a, f64);
-    this.ends = order(this.ends, a, f64);
-    this.units = order(this.units, a, f64);
+    for (let i = 0; i < this.count; i++) {
+      const o = ((this.head + i) & this.mask) * stride;
+      records.set(this.records.subarray(o, o + stride), i * stride);
+    }
+    this.records = records;
     this.events = orderRefs(this.events);
     this.actuatorStarts = orderRefs(this.actuatorStarts);
     this.actuatorEnds = orderRefs(this.actuatorEnds);

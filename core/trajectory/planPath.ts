@@ -22,7 +22,7 @@ import { MaxlError } from '../errors.ts';
 import { trapezoidDuration } from '../plan/phases.ts';
 import { LookaheadPlanner } from '../plan/lookahead.ts';
 import { ColumnarPlannedPath, PathColumns, type PlannedPath } from './plannedPath.ts';
-import { dwellAccel, floorCruise2, validateMove, ZERO_LENGTH_MM, type Move, type ValidatedMove } from './moves.ts';
+import { dwellAccel, floorCruise2, isPlainCap, isPlainEnd, MIN_SPEED, validateMove, ZERO_LENGTH_MM, type Move, type ValidatedMove } from './moves.ts';
 import { LineLimits } from './lineLimits.ts';
 
 export type { PathSample, PlannedPath, PlannedSegment } from './plannedPath.ts';
@@ -76,10 +76,18 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
   const minDuration_s = floor_us * 1e-6;
   const columns = new PathColumns(axisCount, moves.length, start);
   const vertices = columns.vertices;
-  // Every block's final plan lands in its row (planPath never locks, so the offset is the row).
-  const planner = new LookaheadPlanner(moves.length, (row, entry2, exit2) => {
+  // Each block is locked as soon as its plan is final (locking a final block changes no
+  // plan: lookahead.ts), so the planner holds only the blocks within braking distance of
+  // the path's end, in a ring that stays small and in cache, whatever the path's length.
+  // A final plan is reported by offset from the front, which is row `locked`; its row's
+  // duration is timed at once, while the row's inputs are still in cache.
+  let locked = 0;
+  const planner = new LookaheadPlanner(0, (offset, entry2, exit2) => {
+    const row = locked + offset;
     columns.entry2s[row] = entry2;
     columns.exit2s[row] = exit2;
+    // (A dwell's duration is its own, written when it was appended.)
+    if (columns.dwells[row] !== 1) columns.durations[row] = trapezoidDuration(columns.lengths[row], entry2, exit2, columns.cruise2s[row], columns.accels[row]);
   });
   // The tail of the path: the last line's direction and cruise cap (null after rest), in two
   // alternating buffers so that a new direction never overwrites the one it is compared with.
@@ -92,18 +100,34 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
   let n = 0;
   const restAccel = dwellAccel(config);
   for (let i = 0; i < moves.length; i++) {
-    const move = validatePathMove(config, moves[i], from, i);
-    from = move.end;
-    if (move.dwell_s !== null) {
+    const m = moves[i];
+    // A plain line (an `end` and at most a valid maxVelocity) is what validateMove would
+    // return as it is, so its own fields serve; any other move is validated (and may be
+    // refused) there.
+    let end: readonly number[];
+    let maxVelocity: number;
+    let maxAcceleration = Infinity;
+    let dwell_s: number | null = null;
+    if (isPlainPathLine(config, m)) {
+      end = m.end;
+      maxVelocity = m.maxVelocity ?? Infinity;
+    } else {
+      const move = validatePathMove(config, m, from, i);
+      end = move.end;
+      maxVelocity = move.maxVelocity;
+      maxAcceleration = move.maxAcceleration;
+      dwell_s = move.dwell_s;
+    }
+    from = end;
+    if (dwell_s !== null) {
       // A dwell: length 0, entry and exit caps 0 (moves.ts dwellSegment).
       columns.dwells[n] = 1;
-      columns.dwellSeconds[n] = move.dwell_s;
+      columns.durations[n] = dwell_s;
       columns.accels[n] = restAccel;
       planner.append(0, restAccel, 0);
       prevUnit = null;
       prevCruise2 = 0;
     } else {
-      const end = move.end;
       const row = n * axisCount;
       const total = lengthFrom(vertices, row, end);
       if (total < ZERO_LENGTH_MM) {
@@ -111,8 +135,8 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
         continue;
       }
       for (let a = 0; a < axisCount; a++) unit[a] = (end[a] - vertices[row + a]) / total;
-      const cruise2 = floorCruise2(lineLimits.cruise2(move.maxVelocity, unit), total, minDuration_s);
-      const accel = lineLimits.accel(move.maxAcceleration, unit);
+      const cruise2 = floorCruise2(lineLimits.cruise2(maxVelocity, unit), total, minDuration_s);
+      const accel = lineLimits.accel(maxAcceleration, unit);
       columns.lengths[n] = total;
       columns.cruise2s[n] = cruise2;
       columns.accels[n] = accel;
@@ -125,25 +149,32 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
     }
     // The segment ends at the move's end; a dwell holds where the path is.
     const next = (n + 1) * axisCount;
-    if (move.dwell_s !== null) vertices.copyWithin(next, next - axisCount, next);
-    else for (let a = 0; a < axisCount; a++) vertices[next + a] = move.end[a];
+    if (dwell_s !== null) vertices.copyWithin(next, next - axisCount, next);
+    else for (let a = 0; a < axisCount; a++) vertices[next + a] = end[a];
     n++;
+    while (planner.plannedSize > 0) {
+      planner.lockFront();
+      locked++;
+    }
   }
   planner.planToRest();
   columns.count = n;
 
-  // Each row's duration (its timing's, without making the timing), then the start times.
+  // The duration: each row's (timed as its plan became final) summed in path order, as
+  // the start times are when first asked for (PathColumns.startTime).
   let t = 0;
-  for (let i = 0; i < n; i++) {
-    const duration =
-      columns.dwells[i] === 1
-        ? columns.dwellSeconds[i]
-        : trapezoidDuration(columns.lengths[i], columns.entry2s[i], columns.exit2s[i], columns.cruise2s[i], columns.accels[i]);
-    columns.startTimes[i] = t;
-    columns.durations[i] = duration;
-    t += duration;
-  }
+  for (let i = 0; i < n; i++) t += columns.durations[i];
   return new ColumnarPlannedPath(columns, t, skipped);
+}
+
+/**
+ * Whether path move `m` is a line that validatePathMove would return as it is: an
+ * object that is not a dwell, with a plain `end` (moves.ts isPlainEnd: one number
+ * per axis, within the track range) and, if any, a maxVelocity validateMove takes
+ * unchanged. Its own fields then serve as the validated move's.
+ */
+function isPlainPathLine(config: ResolvedConfig, m: PathMove): m is PathLine {
+  return m !== null && typeof m === 'object' && !('dwell_s' in m) && isPlainCap(m.maxVelocity, MIN_SPEED) && isPlainEnd(config, m.end);
 }
 
 /** mm from the vertex at vertices[row …] to `end`, as moves.ts distance() computes it. */

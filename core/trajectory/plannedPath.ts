@@ -6,7 +6,7 @@
  * (and keeps them), for code that iterates the plan.
  *
  * Rows: segment i runs from vertex i to vertex i + 1 (a dwell's two vertices are the
- * same point), starts at startTimes[i] s and lasts durations[i] s. Its phases are
+ * same point), starts at startTime(i) s and lasts durations[i] s. Its phases are
  * not stored (18 numbers a row): they are made again from the row's length, speeds²
  * and limits, by the functions the queue's segments use, when a sample or a segment
  * object needs them.
@@ -70,10 +70,10 @@ export class PathColumns {
   entry2s: Float64Array;
   exit2s: Float64Array;
   dwells: Uint8Array;
-  /** s, each dwell's own duration (NaN for lines) */
-  dwellSeconds: Float64Array;
-  startTimes: Float64Array;
+  /** s; a dwell's is its own dwell_s */
   durations: Float64Array;
+  /** s since the path began, made from the durations on first use (startTime): planning needs only their sum. */
+  private startTimes: Float64Array | null = null;
 
   constructor(axes: number, capacity: number, start: readonly number[]) {
     this.axes = axes;
@@ -86,15 +86,27 @@ export class PathColumns {
     this.entry2s = new Float64Array(n);
     this.exit2s = new Float64Array(n);
     this.dwells = new Uint8Array(n);
-    this.dwellSeconds = new Float64Array(n);
-    this.startTimes = new Float64Array(n);
     this.durations = new Float64Array(n);
+  }
+
+  /** s, when row i starts: the durations before it summed in path order (as planPath sums the total). */
+  startTime(i: number): number {
+    if (this.startTimes === null) {
+      const starts = new Float64Array(Math.max(1, this.count));
+      let t = 0;
+      for (let k = 0; k < this.count; k++) {
+        starts[k] = t;
+        t += this.durations[k];
+      }
+      this.startTimes = starts;
+    }
+    return this.startTimes[i];
   }
 
   /** Row i's timing, as Segment.time() makes it. */
   timingOf(i: number): Timing {
     return this.dwells[i] === 1
-      ? dwellTiming(this.dwellSeconds[i])
+      ? dwellTiming(this.durations[i])
       : trapezoidTiming(this.lengths[i], this.entry2s[i], this.exit2s[i], this.cruise2s[i], this.accels[i]);
   }
 
@@ -140,7 +152,7 @@ export class ColumnarPlannedPath implements PlannedPath {
       start: c.vertex(i),
       end: c.vertex(i + 1),
       length: c.lengths[i],
-      startTime: c.startTimes[i],
+      startTime: c.startTime(i),
       duration: c.durations[i],
       entryVelocity: Math.sqrt(c.entry2s[i]),
       exitVelocity: Math.sqrt(c.exit2s[i]),
@@ -155,7 +167,7 @@ export class ColumnarPlannedPath implements PlannedPath {
   sample(time: number): PathSample {
     if (typeof time !== 'number' || Number.isNaN(time)) throw new MaxlError('MOVE_INVALID', `must be a time in s, got ${String(time)}`, 't');
     const c = this.columns;
-    const s: TrajectorySample | null = sampleTimeline(0, c.count, (i) => this.timedSegment(i), (i) => c.startTimes[i], time, 1);
+    const s: TrajectorySample | null = sampleTimeline(0, c.count, (i) => this.timedSegment(i), (i) => c.startTime(i), time, 1);
     if (s === null) {
       const start = c.vertex(0);
       return { position: start, velocity: start.map(() => 0), acceleration: start.map(() => 0) };

@@ -102,6 +102,14 @@ export class TrajectoryQueue extends TailEditing implements QueueView {
   // --- executing ---
 
   /**
+   * Whether the first untransmitted segment's plan is final: more path appended
+   * cannot change it, so locking it now gives the plan that waiting would.
+   */
+  get frontIsFinal(): boolean {
+    return this.planner.isFinal(0);
+  }
+
+  /**
    * Locks the first untransmitted segment and gives it its start time in author µs:
    * right after the transmitted path if the machine is still moving there, else at
    * `earliestStart_us` or later. Returns undefined when nothing is queued.

@@ -11,12 +11,14 @@
  * queueReading.ts reads the segments, tailEditing.ts edits the untransmitted tail,
  * queue.ts locks, splits and retires them for the executor.
  */
-import { MaxlError } from '../errors.ts';
+import { errorAt, MaxlError } from '../errors.ts';
 import type { ResolvedConfig } from '../config/types.ts';
 import { LookaheadPlanner } from '../plan/lookahead.ts';
-import { actuatorPosition } from '../config/transforms.ts';
+import { actuatorPosition, NO_ACTUATORS } from '../config/transforms.ts';
+import { NO_SPECS, type ResolvedEventSpec } from './events.ts';
 import {
   directionInto,
+  isPlainLine,
   floorCruise2,
   hasNonlinearTransform,
   segmentsForMove,
@@ -60,6 +62,11 @@ export interface MoveReceipt {
  * queue someone listens to: 40 MB).
  */
 export const MAX_LOOKAHEAD_SEGMENTS = 65_536;
+
+/** enqueueLine's answer for a zero-length move that sets no event: skipped, nothing queued. */
+const LINE_SKIPPED = 0;
+/** enqueueLine's answer for a zero-length move that sets events: nothing changed; the object path makes its 0-s dwell. */
+const LINE_NEEDS_OBJECT = -1;
 
 /** The queue's segments, appending and the planner's hand-off; TrajectoryQueue (queue.ts) is the whole queue. */
 export abstract class QueueCore {
@@ -190,11 +197,81 @@ export abstract class QueueCore {
     return this.appendValidated(this.validate(move));
   }
 
+  /**
+   * The batch producer's step: appends moves[from], moves[from + 1], … for as long as
+   * the queue has room for a run (hasRoomForRun, checked before each), and returns
+   * the index of the first move not appended (moves.length when all were). Each move
+   * is validated from the path's tail and appended exactly as append() would (the
+   * same segments, ids and plan as a loop of single appends), without a receipt per
+   * move. A bad move throws a MaxlError naming it (`moves[i]…`) with the
+   * moves before it appended and nothing of it. Producers waiting for room
+   * (reserveSlot) must be served first: with any waiting it appends nothing.
+   */
+  appendWhileRoom(moves: readonly Move[], from: number): number {
+    let i = from;
+    if (this.gate.waiting > 0) return i;
+    // Plain lines (moves.ts isPlainLine) skip validateMove's object: the end array is
+    // the caller's, borrowed as the tail position while this call runs (the caller
+    // cannot change it meanwhile) and copied once at the end, as validateMove would
+    // have copied each. Everything else takes the single-move path.
+    let borrowed = false;
+    try {
+      for (; i < moves.length && this.hasRoomForRun(); i++) {
+        const move = moves[i];
+        if (this.columnar && this.listeners.length === 0 && isPlainLine(this.config, move)) {
+          const id = this.enqueueLine(move.endPosition, move.maxVelocity ?? Infinity, move.maxAcceleration ?? Infinity, NO_SPECS, NO_ACTUATORS, this.nextMoveId);
+          this.nextMoveId++;
+          if (id !== LINE_SKIPPED) borrowed = true;
+          continue;
+        }
+        if (borrowed) this.ownTailPosition();
+        borrowed = false;
+        this.appendValidated(this.validateAt(moves, i));
+      }
+    } finally {
+      if (borrowed) this.ownTailPosition();
+      // Final plans of object segments (those before the columnar tail) that nobody was told of yet.
+      this.flushPlanned();
+    }
+    return i;
+  }
+
+  /** Makes the tail position an array of the queue's own (a copy of one borrowed from a caller). */
+  private ownTailPosition(): void {
+    this.tail.position = this.tail.position.slice();
+  }
+
+  /**
+   * hasRoom(), or, at a lookahead deeper than the capacity, room for a run: while
+   * fewer than capacity / 8 untransmitted segments are final. Past the capacity the
+   * queue lets a producer in only while no segment is final, and on a fine path each
+   * append finalises about one, so a producer and an executor that waits for room
+   * would hand over one segment at a time; a batch producer may queue this many final
+   * segments more, so that the executor takes them as a run. The plan is the same
+   * (more path known never changes a final plan, and the executor still locks only
+   * final segments); the queue holds at most capacity / 8 segments more.
+   */
+  private hasRoomForRun(): boolean {
+    if (this.hasRoom()) return true;
+    const untransmitted = this.untransmitted + this.pending.size;
+    return this.gate.reserved === 0 && this.planner.plannedSize < this.capacity / 8 && untransmitted < MAX_LOOKAHEAD_SEGMENTS;
+  }
+
+  /** Validates moves[i] from the path's tail; a bad one throws with its index in the field (`moves[i].endPosition`). */
+  private validateAt(moves: readonly Move[], i: number): ValidatedMove {
+    try {
+      return this.validate(moves[i]);
+    } catch (err) {
+      throw err instanceof MaxlError ? errorAt(err, `moves[${i}]`) : err;
+    }
+  }
+
   /** Turns a move into segments at the tail and plans them; `added` collects them for an edit's report. */
   protected enqueue(move: ValidatedMove, moveId: number, added: Segment[] | null): MoveReceipt {
     if (added === null && this.columnar && move.dwell_s === null && this.listeners.length === 0) {
-      const receipt = this.enqueueLine(move, moveId);
-      if (receipt !== null) return receipt;
+      const id = this.enqueueLine(move.end, move.maxVelocity, move.maxAcceleration, move.events, move.actuatorEnd, moveId);
+      if (id > 0) return { moveId, segmentIds: [id], skipped: false };
+      if (id === LINE_SKIPPED) return { moveId, segmentIds: [], skipped: true };
     }
     this.materialize();
     const segments = segmentsForMove(this.config, move, this.tail, this.nextSegmentId, moveId, this.minSegmentDuration_s);
@@ -217,30 +294,41 @@ export abstract class QueueCore {
 
   /**
    * Appends a linear move as one segment in the columnar tail: segmentsForMove's
-   * one-piece case (moves.ts), without making the object. A zero-length move that
-   * sets no event is skipped here too; one that sets events (a 0-s dwell) returns
-   * null, with nothing changed, for the object path.
+   * one-piece case (moves.ts), without making the object. The move is given by its
+   * validated fields (ValidatedMove's): its end (the path's tail position from now
+   * on), caps, event specs and actuators at the end. Returns the segment's id (> 0);
+   * LINE_SKIPPED for a zero-length move that sets no event (counted, nothing
+   * queued); LINE_NEEDS_OBJECT, with nothing changed, for one that sets events (a
+   * 0-s dwell), which the object path makes.
    */
-  private enqueueLine(move: ValidatedMove, moveId: number): MoveReceipt | null {
+  private enqueueLine(
+    end: number[],
+    maxVelocity: number,
+    maxAcceleration: number,
+    events: readonly ResolvedEventSpec[],
+    actuatorEnd: number[] | null,
+    moveId: number,
+  ): number {
     const tail = this.tail;
     const unit = tail.unit === this.unitBuffers[0] ? this.unitBuffers[1] : this.unitBuffers[0];
-    const length = directionInto(tail.position, move.end, unit);
+    const length = directionInto(tail.position, end, unit);
     if (length < ZERO_LENGTH_MM) {
-      if (move.events.length > 0) return null;
+      if (events.length > 0) return LINE_NEEDS_OBJECT;
       this.skippedZeroLength++;
-      return { moveId, segmentIds: [], skipped: true };
+      return LINE_SKIPPED;
     }
     const limits = this.lineLimits;
-    const cruise2 = floorCruise2(limits.cruise2(move.maxVelocity, unit), length, this.minSegmentDuration_s);
-    const accel = limits.accel(move.maxAcceleration, unit);
+    const cruise2 = floorCruise2(limits.cruise2(maxVelocity, unit), length, this.minSegmentDuration_s);
+    const accel = limits.accel(maxAcceleration, unit);
     const maxEntry2 = limits.entryCap2(tail.unit, tail.cruise2, unit, cruise2);
     const id = this.nextSegmentId++;
-    this.pending.push(id, moveId, move, tail.position, unit, cruise2, actuatorPosition(this.config.transforms, tail.position));
+    const position = tail.position;
+    this.pending.push(id, moveId, end, maxVelocity, maxAcceleration, events, actuatorEnd, position, unit, cruise2, actuatorPosition(this.config.transforms, position));
     this.planner.append(length, accel, maxEntry2);
-    tail.position = move.end;
+    tail.position = end;
     tail.unit = unit;
     tail.cruise2 = cruise2;
-    return { moveId, segmentIds: [id], skipped: false };
+    return id;
   }
 
   /** Moves the columnar tail into `live` as objects, so that the untransmitted path is all objects. */
