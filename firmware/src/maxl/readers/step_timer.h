@@ -127,8 +127,12 @@ class StepTimer {
   static uint32_t ticksAt(uint32_t t) { return (uint32_t)maxl_fw::hal::stepTicks(t) << 16; }
   // Sets the compare after the rings changed (takes the interrupt lock).
   static void kick();
-  // The compare interrupt (the AVR vector and the host's virtual timer call it).
+  // The compare interrupt's work in C (serviceAll): the host's virtual timer
+  // calls it; on AVR the vector is its assembly form (step_timer.cpp).
   static void interrupt();
+  // The same without the pulse hold, which waits for the count to move on:
+  // the reference of the vector's check in simavr, with the timer stopped.
+  static void interruptWithoutHold();
 
   // for the interrupt
   static StepChannel* channels_[MAXL_STEP_CHANNELS];
