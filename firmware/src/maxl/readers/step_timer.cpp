@@ -262,13 +262,15 @@ namespace {
 static_assert(offsetof(StepChannel, current_) == 0 && sizeof(StepRun) == 9 && offsetof(StepRun, count) == 8 &&
                   offsetof(hal::OutputPin, port) == 0 && offsetof(hal::OutputPin, mask) == 2,
               "the step vector reads these offsets");
-static_assert(offsetof(StepChannel, queued_) <= 63 - 9 && offsetof(StepChannel, backward_) <= 63 &&
-                  offsetof(StepChannel, dirPin) + 2 <= 63,
-              "the step vector reaches every member with ldd (displacement up to 63)");
+static_assert(offsetof(StepChannel, head_) < offsetof(StepChannel, backward_) &&
+                  offsetof(StepChannel, count_) < offsetof(StepChannel, backward_) &&
+                  offsetof(StepChannel, backward_) <= 63 && offsetof(StepChannel, dirPin) + 2 <= 63 &&
+                  offsetof(StepChannel, queued_) <= 63,
+              "the step vector reaches these members with ldd and queued_ with adiw (up to 63)");
 static_assert(StepChannel::QUEUED * 9 <= 255, "head · 9 fits a byte");
 #pragma GCC diagnostic pop
 static_assert(MAXL_STEP_MIN_TICKS <= 63, "adiw");
-static_assert(MAXL_STEP_CHANNELS >= 1 && MAXL_STEP_CHANNELS <= 8, "the step vector keeps a bit per channel");
+static_assert(MAXL_STEP_CHANNELS >= 1 && MAXL_STEP_CHANNELS <= 255, "the step vector counts the channels in one byte");
 static_assert(StepChannel::BACKWARD == 0x80 && StepChannel::MAX_RUN == 0x7F, "andi 0x7F, andi 0x80");
 }  // namespace
 }  // namespace maxl_fw
