@@ -98,7 +98,7 @@ __attribute__((noinline)) int16_t StepChannel::dropFrom(uint32_t tick) {
 int16_t StepChannel::dropAll() {
   int16_t dropped = pending();
   count_ = 0;
-  current_.count = 0;  // the AVR fast path looks only at current_
+  current_.count = 0;  // the AVR vector tests only current_ for "no run"
   return dropped;
 }
 

@@ -53,7 +53,7 @@ struct StepRun {
 };
 
 // One stepper's steps: the run going out (`current_`, first in the object,
-// where the AVR vector's fast path finds it) and the runs queued behind it,
+// where the AVR vector finds it) and the runs queued behind it,
 // MAXL_STEP_RING in all.
 class StepChannel {
  public:
