@@ -68,6 +68,8 @@ avr_self_test MulHiCheck MULHI mulhi16
 # The window count (readers/step_count.h; its portable form is checked on the
 # host against a threshold walk).
 avr_self_test StepCountCheck COUNT "step count"
+# The step vector (readers/step_timer.cpp) against its C form, StepTimer::interrupt().
+avr_self_test StepVectorCheck VECTOR "step vector"
 # The step vector's fast path (readers/step_timer.cpp) is AVR assembly, which
 # the host tests cannot run either: drive benchmark sketches in simavr with
 # real frames (bench/firmware/simavr_steps.c, the step-rate benchmark's

@@ -244,6 +244,52 @@ TEST(StepChannel, RunAcrossTheTimerWrap) {
   StepTimer::detach(&g.channel());
 }
 
+// What the AVR vector (assembly, step_timer.cpp) relies on without checking:
+// a channel is idle exactly when current_ has no steps left (its one test for
+// "no run"), and whenever it is busy after an interrupt, the DIR state
+// backward_ is current_'s direction (it updates DIR only when a promoted run
+// changes it). Random pushes of 1–3 steps in random directions, drops, clears
+// and timer runs over two channels; checked after every operation.
+TEST(StepChannel, IdleMeansNoStepsInCurrentAndDirFollowsTheRunGoingOut) {
+  host::reset();
+  MAXL_StepGenerator a(2, 5, 80.0f), b(3, 6, 80.0f, true);
+  a.begin();
+  b.begin();
+  ASSERT_TRUE(StepTimer::attach(&a.channel()));
+  ASSERT_TRUE(StepTimer::attach(&b.channel()));
+  uint32_t t = 1000, rng = 12345u;
+  auto next = [&rng]() { return rng = rng * 1664525u + 1013904223u; };
+  host::setMicros(t);
+  int queuedReversals = 0;
+  for (int op = 0; op < 4000; op++) {
+    StepChannel& c = (next() >> 16) & 1 ? a.channel() : b.channel();
+    uint32_t pick = (next() >> 16) % 10;
+    if (pick < 6) {
+      if (c.free()) {
+        uint8_t before = c.busy() ? (uint8_t)(c.current_.count & StepChannel::BACKWARD) : 0;
+        bool backward = (next() >> 16) & 1;
+        uint32_t at = StepTimer::ticksAt(t + (next() >> 16) % 200);
+        c.push(at, ((next() >> 16) % 40 + 1) << 16, (uint8_t)((next() >> 16) % 3 + 1), backward);
+        if (c.busy() && backward != (before != 0)) queuedReversals++;
+      }
+    } else if (pick < 9) {
+      t += (next() >> 16) % 150;
+      host::runStepTimer(t);
+    } else if (pick == 9 && (next() >> 16) % 4 == 0) {
+      c.clear();
+    } else {
+      c.dropFrom(StepTimer::ticksAt(t + (next() >> 16) % 100));
+    }
+    for (StepChannel* ch : {&a.channel(), &b.channel()}) {
+      ASSERT_EQ(ch->busy(), (ch->current_.count & StepChannel::MAX_RUN) != 0) << "op " << op;
+      if (ch->busy()) ASSERT_EQ(ch->backward_, ch->current_.count & StepChannel::BACKWARD) << "op " << op;
+    }
+  }
+  EXPECT_GT(queuedReversals, 100);  // runs queued against the one going out: DIR changes on promotion
+  StepTimer::detach(&a.channel());
+  StepTimer::detach(&b.channel());
+}
+
 // ---------------------------------------------------------------- window maths
 
 // Windows along exact quadratic paths, planned as MAXL_Stepper does (lag =

@@ -19,9 +19,9 @@
 // The interrupt's share of a step: pin high, one 32-bit add, a new compare
 // (while the pulse is high), pin low (after MAXL_STEP_PULSE_TICKS). The run
 // going out is the channel's `current_`, consumed in place; when it is spent
-// the next queued run is copied in. On AVR the vector has an assembly fast
-// path for the common case at high rates (one channel, a step inside its
-// run: step_timer.cpp); everything else goes through serviceAll().
+// the next queued run is copied in. On AVR the vector is one pass of
+// assembly over every channel (step_timer.cpp); elsewhere serviceAll() does
+// the same in C.
 #ifndef MAXL_READERS_STEP_TIMER_H
 #define MAXL_READERS_STEP_TIMER_H
 
@@ -53,7 +53,7 @@ struct StepRun {
 };
 
 // One stepper's steps: the run going out (`current_`, first in the object,
-// where the AVR vector's fast path finds it) and the runs queued behind it,
+// where the AVR vector finds it) and the runs queued behind it,
 // MAXL_STEP_RING in all.
 class StepChannel {
  public:
@@ -89,11 +89,18 @@ class StepChannel {
   }
 
   // The run going out (count_ >= 1), then the stepper's pins (MAXL_StepGenerator
-  // keeps them here). The AVR vector reads these three at fixed offsets.
+  // keeps them here), then the ring's state. The AVR vector reads every member
+  // below at fixed offsets (step_timer.cpp), so they are public; only
+  // StepTimer's interrupt writes them besides the methods above.
   StepRun current_;
   maxl_fw::hal::OutputPin stepPin;
   maxl_fw::hal::OutputPin dirPin;
   bool invert;
+  volatile uint8_t head_;   // the first queued run
+  volatile uint8_t count_;  // runs held: current_ (when >= 1) and count_ − 1 queued
+  uint8_t backward_;        // the DIR pin's state: BACKWARD, 0, or UNKNOWN
+  static const uint8_t QUEUED = MAXL_STEP_RING - 1;
+  StepRun queued_[QUEUED];  // behind current_, from head_
 
  private:
   int16_t dropAll();
@@ -107,12 +114,6 @@ class StepChannel {
   // current_ is spent: the next queued run takes its place (or none is left).
   inline void promote();
   void setDirection(uint8_t backward);
-
-  static const uint8_t QUEUED = MAXL_STEP_RING - 1;
-  StepRun queued_[QUEUED];  // behind current_, from head_
-  volatile uint8_t head_;
-  volatile uint8_t count_;  // runs held: current_ (when >= 1) and count_ − 1 queued
-  uint8_t backward_;        // the DIR pin's state: BACKWARD, 0, or UNKNOWN
 };
 
 // The timer and the channels it serves.
@@ -126,8 +127,12 @@ class StepTimer {
   static uint32_t ticksAt(uint32_t t) { return (uint32_t)maxl_fw::hal::stepTicks(t) << 16; }
   // Sets the compare after the rings changed (takes the interrupt lock).
   static void kick();
-  // The compare interrupt (the AVR vector and the host's virtual timer call it).
+  // The compare interrupt's work in C (serviceAll): the host's virtual timer
+  // calls it; on AVR the vector is its assembly form (step_timer.cpp).
   static void interrupt();
+  // The same without the pulse hold, which waits for the count to move on:
+  // the reference of the vector's check in simavr, with the timer stopped.
+  static void interruptWithoutHold();
 
   // for the interrupt
   static StepChannel* channels_[MAXL_STEP_CHANNELS];
