@@ -12,6 +12,7 @@ import { createMAXL, type MaxlConfig, type Move } from '../index.ts';
 import { queueOf, type Maxl } from '../maxl.ts';
 import { MaxlError } from '../errors.ts';
 import { DryRun } from './dryRun.ts';
+import { historyOf, machine } from '../testing/maxlHistory.ts';
 
 const LIMITS = { maxVelocity: 250, maxAcceleration: 3000, junctionDeviation: 0.05 };
 
@@ -44,17 +45,6 @@ function config(corexy: boolean, capacity: number | null): MaxlConfig {
   };
 }
 
-function machine(c: MaxlConfig, listening: boolean): Maxl {
-  const maxl = createMAXL(c, { initialPosition: [0, 0] });
-  if (listening) maxl.queue.subscribe(() => {});
-  return maxl;
-}
-
-function historyOf(maxl: Maxl) {
-  const out = [];
-  for (let i = 0; i < maxl.history.size; i++) out.push(maxl.history.at(i));
-  return out;
-}
 
 /** The single-move producer loop: take until there is room, then append; a refused move is noted (its code) and skipped. */
 function oneByOne(maxl: Maxl, moves: Move[]): string[] {

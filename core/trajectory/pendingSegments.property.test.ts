@@ -13,6 +13,7 @@ import fc from 'fast-check';
 import { createMAXL, type MaxlConfig, type Move } from '../index.ts';
 import { queueOf, type Maxl } from '../maxl.ts';
 import { DryRun } from './dryRun.ts';
+import { historyOf, machine } from '../testing/maxlHistory.ts';
 import type { Segment } from './segment.ts';
 
 type Op =
@@ -119,17 +120,6 @@ function apply(maxl: Maxl, op: Op): unknown {
   }
 }
 
-function machine(config: MaxlConfig, listening: boolean): Maxl {
-  const maxl = createMAXL(config, { initialPosition: [0, 0] });
-  if (listening) maxl.queue.subscribe(() => {});
-  return maxl;
-}
-
-function historyOf(maxl: Maxl) {
-  const out = [];
-  for (let i = 0; i < maxl.history.size; i++) out.push(maxl.history.at(i));
-  return out;
-}
 
 describe('the queue keeps untransmitted lines as columns', () => {
   it('and plans, locks, edits and records them exactly as segment objects', () => {
