@@ -63,7 +63,7 @@
 //                         rate (a pass above a fail). The sweep then starts at
 //                         half the search's rate as always.
 // Wall time of `--only one,two,two30,three` (the searches and sweeps, ~200
-// simavr runs): 3 min 22 s on the 2-core machine at load ~5 (firmware/README.md).
+// simavr runs): 2–3.5 minutes on the 2-core machine at load ~5 (firmware/README.md).
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, readdirSync } from 'node:fs';
 import path from 'node:path';
