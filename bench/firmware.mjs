@@ -14,12 +14,20 @@
 //                         1–3 µs where rounding makes them; mean, 99th
 //                         percentile (upper edge of its 8-cycle bin) and largest
 //   avrCyclesPerEvalMax   the largest evaluation of all the runs above
-//   avrStepRateHz         the highest cruise step rate at which one stepper
-//                         (the Stepper example's device, fed real frames over
-//                         the simulated UART) emits EVERY step within one step
-//                         period after its ideal time, none more than 2 µs
-//                         early, none missing (libsimavr harness, see
-//                         bench/firmware/simavr_steps.c); searched in 250 Hz
+//   avrStepRateHz         the highest cruise step rate R such that at EVERY
+//                         rate on the 250 Hz grid from avrStepRateSweptFromHz
+//                         up to R one stepper (the Stepper example's device,
+//                         fed real frames over the simulated UART) emits every
+//                         step within one step period after its ideal time,
+//                         none more than 2 µs early, none missing (libsimavr
+//                         harness, see bench/firmware/simavr_steps.c). Found
+//                         in two passes: a binary search on the grid
+//                         (…SearchHz: clean there, but the misses do not always
+//                         grow with the rate, so rates below it may miss), then
+//                         an ascending sweep of every grid rate from half the
+//                         search's rate (…SweptFromHz) that stops at the first
+//                         miss (…FirstMissHz, null if none up to …SearchHz).
+//                         The same four fields for each step-rate figure below.
 //   avrStepRateTwoSteppersHz  the same for two steppers on the timer at once
 //                         (BlotPlotter's CoreXY pair), each at the rate
 //                         (StepRate and StepRateTwo are built with the Stepper
@@ -52,7 +60,10 @@
 //                         (defaults 0 and 80 000). Fewer trials near a known
 //                         figure; the figure can differ from the default
 //                         search's only where misses do not grow with the
-//                         rate (a pass above a fail).
+//                         rate (a pass above a fail). The sweep then starts at
+//                         half the search's rate as always.
+// Wall time of `--only one,two,two30,three` (the searches and sweeps, ~200
+// simavr runs): 2–3.5 minutes on the 2-core machine at load ~5 (firmware/README.md).
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, readdirSync } from 'node:fs';
 import path from 'node:path';
@@ -165,8 +176,35 @@ function searchRate(label, elf, env) {
     if (trial(mid).missed === 0) lo = mid;
     else hi = mid;
   }
-  log(lo ? `${label}: highest rate without a missed step: ${lo} Hz` : `${label}: steps were missed at every rate tried`);
-  return { rate: lo, best: lo ? trials.get(lo) : null };
+  log(lo ? `${label}: the search's highest rate without a missed step: ${lo} Hz` : `${label}: steps were missed at every rate tried`);
+  // The misses do not always grow with the rate (a pass can sit above a fail),
+  // so the search's rate alone is not "every rate below is clean". Sweep the
+  // grid upward from half the search's rate (trials already run are reused)
+  // and stop at the first miss: the figure is the last clean rate before it.
+  const floor = Math.max(STEP, Math.round((lo * SWEEP_FLOOR) / STEP) * STEP);
+  let clean = 0;
+  let firstMiss = null;
+  for (let rate = floor; lo && rate <= lo; rate += STEP) {
+    if (trial(rate).missed > 0) {
+      firstMiss = rate;
+      break;
+    }
+    clean = rate;
+  }
+  if (lo) log(`${label}: every rate from ${floor} Hz clean up to ${clean} Hz${firstMiss ? `, first miss at ${firstMiss} Hz` : ''}`);
+  return { rate: clean, searched: lo, floor: lo ? floor : null, firstMiss, best: clean ? trials.get(clean) : null };
+}
+// where the sweep starts, as a fraction of the search's rate
+const SWEEP_FLOOR = 0.5;
+// the JSON fields of one step-rate figure: the swept figure and what stands beside it
+function rateFields(name, r, definition) {
+  return {
+    [`${name}Hz`]: r.rate,
+    [`${name}SearchHz`]: r.searched,
+    [`${name}SweptFromHz`]: r.floor,
+    [`${name}FirstMissHz`]: r.firstMiss,
+    [`${name}Definition`]: definition,
+  };
 }
 const single = want('one') ? searchRate('one stepper', path.join(out, 'StepRate/StepRate.elf'), {}) : null;
 const pair = want('two') ? searchRate('two steppers', path.join(out, 'StepRateTwo/StepRateTwo.elf'), { STEPPERS: '2' }) : null;
@@ -249,28 +287,24 @@ const result = {
     : {}),
   ...(single
     ? {
-        avrStepRateHz: single.rate,
-        avrStepRateDefinition:
-          'highest cruise rate (250 Hz grid, 80 steps/mm, 10000 mm/s² ramps, 300 ms cruise, all frames sent before the move, STATUS reports running) at which every step edge comes within one step period after its ideal time, none more than 2 µs early, none missing',
+        ...rateFields('avrStepRate', single,
+          'highest cruise rate R (250 Hz grid, 80 steps/mm, 10000 mm/s² ramps, 300 ms cruise, all frames sent before the move, STATUS reports running) such that at EVERY grid rate from SweptFromHz (half the search\'s rate) up to R every step edge comes within one step period after its ideal time, none more than 2 µs early, none missing; SearchHz is the binary search\'s clean rate (rates below it may miss), FirstMissHz the sweep\'s first missing rate (null: none up to SearchHz)'),
       }
     : {}),
   ...(best ? { avrStepRateMaxLagUs: best.maxLagUs, avrLoopCyclesMean: best.loopMeanCycles, avrLoopMaxUs: Number((best.loopMaxCycles / 16).toFixed(1)) } : {}),
   ...(pair
     ? {
-        avrStepRateTwoSteppersHz: pair.rate,
-        avrStepRateTwoSteppersDefinition: 'the same move on two steppers at once (StepRateTwo: STEP D2 and D3, both on the step timer, as BlotPlotter), each at the rate; every step of both checked',
+        ...rateFields('avrStepRateTwoSteppers', pair, 'the same move on two steppers at once (StepRateTwo: STEP D2 and D3, both on the step timer, as BlotPlotter), each at the rate; every step of both checked; figure, SearchHz, SweptFromHz and FirstMissHz as avrStepRate\'s'),
       }
     : {}),
   ...(pair30
     ? {
-        avrStepRateTwoSteppers30DegHz: pair30.rate,
-        avrStepRateTwoSteppers30DegDefinition: 'the same pair on a CoreXY line at 30° to x: motor a (x + y) at the rate, motor b (x − y) at 0.268 of it; every step of both checked against its own period',
+        ...rateFields('avrStepRateTwoSteppers30Deg', pair30, 'the same pair on a CoreXY line at 30° to x: motor a (x + y) at the rate, motor b (x − y) at 0.268 of it; every step of both checked against its own period; figure, SearchHz, SweptFromHz and FirstMissHz as avrStepRate\'s'),
       }
     : {}),
   ...(three
     ? {
-        avrStepRateThreeSteppersHz: three.rate,
-        avrStepRateThreeSteppersDefinition: 'the same move on three steppers (StepRateThree: the CncShield example, STEP D2, D3, D4, 6 segments), each at the rate; every step of all three checked',
+        ...rateFields('avrStepRateThreeSteppers', three, 'the same move on three steppers (StepRateThree: the CncShield example, STEP D2, D3, D4, 6 segments), each at the rate; every step of all three checked; figure, SearchHz, SweptFromHz and FirstMissHz as avrStepRate\'s'),
       }
     : {}),
   ...(examples ? { examples } : {}),

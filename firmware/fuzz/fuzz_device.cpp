@@ -106,7 +106,7 @@ void advance(uint32_t dt) {
     host::setMicros(host::micros() + dt);
 }
 
-const uint8_t TYPES[] = {type::HELLO_REQUEST, type::PING, type::CLOCK, type::SUBSCRIBE, type::GEOMETRY,
+const uint8_t TYPES[] = {type::HELLO_REQUEST, type::PING_REQUEST, type::CLOCK, type::SUBSCRIBE, type::GEOMETRY,
                          type::TIMING, type::EVENTS, type::REPLACE_TAIL, type::HALT, type::STATUS_REQUEST};
 
 }  // namespace

@@ -32,9 +32,9 @@ TEST(Messages, FixedSizesMatchTheSpec) {
 TEST(Messages, WrongLengthsAreMalformed) {
   msg::DecodeContext ctx{0, 0};
   uint8_t buf[20] = {0};
-  EXPECT_EQ(msg::checkPayload(type::PING, buf, 4, ctx), CODEC_OK);
-  EXPECT_EQ(msg::checkPayload(type::PING, buf, 2, ctx), CODEC_MALFORMED);
-  EXPECT_EQ(msg::checkPayload(type::PING, buf, 5, ctx), CODEC_MALFORMED);
+  EXPECT_EQ(msg::checkPayload(type::PING_REQUEST, buf, 4, ctx), CODEC_OK);
+  EXPECT_EQ(msg::checkPayload(type::PING_REQUEST, buf, 2, ctx), CODEC_MALFORMED);
+  EXPECT_EQ(msg::checkPayload(type::PING_REQUEST, buf, 5, ctx), CODEC_MALFORMED);
   EXPECT_EQ(msg::checkPayload(type::STATUS_REQUEST, buf, 0, ctx), CODEC_OK);
   EXPECT_EQ(msg::checkPayload(type::STATUS_REQUEST, buf, 1, ctx), CODEC_MALFORMED);
   EXPECT_EQ(msg::checkPayload(type::HALT, buf, 5, ctx), CODEC_OK);

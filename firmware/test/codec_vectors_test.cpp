@@ -23,7 +23,7 @@ namespace {
 
 const std::map<std::string, uint8_t>& typeCodes() {
   static const std::map<std::string, uint8_t> m = {
-      {"HELLO_REQUEST", type::HELLO_REQUEST}, {"PING", type::PING}, {"CLOCK", type::CLOCK},
+      {"HELLO_REQUEST", type::HELLO_REQUEST}, {"PING", type::PING_REQUEST}, {"CLOCK", type::CLOCK},
       {"SUBSCRIBE", type::SUBSCRIBE}, {"GEOMETRY", type::GEOMETRY}, {"TIMING", type::TIMING},
       {"EVENTS", type::EVENTS}, {"REPLACE_TAIL", type::REPLACE_TAIL}, {"HALT", type::HALT},
       {"STATUS_REQUEST", type::STATUS_REQUEST}, {"HELLO", type::HELLO}, {"READER", type::READER},
@@ -61,7 +61,7 @@ std::string decodeFrame(const std::vector<uint8_t>& bytes, const msg::DecodeCont
       json f = json::object();
       switch (rx.type()) {
         case type::HELLO_REQUEST: { msg::HelloRequest m; msg::parse(p, n, m); f = {{"protocol", m.protocol}}; break; }
-        case type::PING: { msg::Ping m; msg::parse(p, n, m); f = {{"pingId", m.pingId}, {"replyAfter", m.replyAfter}}; break; }
+        case type::PING_REQUEST: { msg::Ping m; msg::parse(p, n, m); f = {{"pingId", m.pingId}, {"replyAfter", m.replyAfter}}; break; }
         case type::CLOCK: {
           msg::Clock m; msg::parse(p, n, m);
           f = {{"deviceRef", m.deviceRef}, {"authorRef", m.authorRef}, {"ratePpb", m.ratePpb}};
@@ -189,7 +189,7 @@ std::vector<uint8_t> encodePacket(const json& packet, const msg::DecodeContext& 
   std::string keep;
   switch (t) {
     case type::HELLO_REQUEST: msg::write(w, msg::HelloRequest{f["protocol"]}); break;
-    case type::PING: msg::write(w, msg::Ping{f["pingId"], f["replyAfter"]}); break;
+    case type::PING_REQUEST: msg::write(w, msg::Ping{f["pingId"], f["replyAfter"]}); break;
     case type::CLOCK: msg::write(w, msg::Clock{f["deviceRef"], f["authorRef"], f["ratePpb"]}); break;
     case type::SUBSCRIBE: msg::write(w, msg::Subscribe{f["reader"], f["kind"], f["slot"]}); break;
     case type::GEOMETRY: {

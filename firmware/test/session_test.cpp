@@ -13,7 +13,7 @@ void event(float) {}
 
 TEST(Session, NothingIsHandledBeforeHelloRequest) {
   Harness h;
-  Answer a = h.exchange(h.author.raw(type::PING, {1, 0, 0, 0}));
+  Answer a = h.exchange(h.author.raw(type::PING_REQUEST, {1, 0, 0, 0}));
   EXPECT_EQ(a.reason, nack::OUT_OF_ORDER);
   EXPECT_EQ(a.detail, nack::NO_SESSION_DETAIL);
 }
@@ -136,9 +136,9 @@ TEST(Session, BadFramesGetBadCrcWithTheExpectedSeq) {
 TEST(Session, MalformedAndUnknownAdvanceExpected) {
   Harness h;
   h.open({});
-  Answer a = h.exchange(h.author.raw(type::PING, {1, 0}));  // the old 2-byte PING
+  Answer a = h.exchange(h.author.raw(type::PING_REQUEST, {1, 0}));  // the old 2-byte PING
   EXPECT_EQ(a.reason, nack::MALFORMED);
-  EXPECT_EQ(a.detail, type::PING);
+  EXPECT_EQ(a.detail, type::PING_REQUEST);
   Answer b = h.exchange(h.author.raw(0x30, {}));
   EXPECT_EQ(b.reason, nack::UNKNOWN_MESSAGE);
   EXPECT_EQ(b.detail, 0x30);

@@ -855,3 +855,93 @@ TEST(TimedStepperGrid, TwoSteppersAtUnequalRatesEveryStepOnTime) {
   EXPECT_EQ(a.steps(), 0);
   EXPECT_EQ(b.steps(), 0);
 }
+
+// The planner reuses gridTooMany(t1)'s position as the window's end where
+// gridSized(t1) says Motion::lookAt would compute the same (windowEnd in
+// step_planner.cpp). Checked at every loop of a two-stepper move (ramps,
+// cruise, segment ends, out and back): for ends t1 across the walk's current
+// piece (its start, steps of 97 µs, the piece's end and a unit either side),
+// wherever gridSized(t1) holds, lookAt on a copy of the walk gives exactly
+// gridTooMany's position and does not move the copy.
+struct MAXL_StepperGridCheck {
+  int sized = 0, notSized = 0, mismatched = 0, moved = 0;
+  void at(const Motion& motion, const MAXL_Stepper& s) {
+    if (!s.synced_ || s.look_.state == Lookahead::REST) return;
+    std::vector<uint32_t> ends = {s.look_.pieceEnd, s.look_.pieceEnd - 1, s.look_.pieceEnd + 1};
+    for (uint32_t t = s.look_.chunkStart; timeBefore(t, s.look_.pieceEnd); t += 97) ends.push_back(t);
+    for (uint32_t t1 : ends) {
+      if (!s.gridSized(t1)) {
+        notSized++;
+        continue;
+      }
+      sized++;
+      Lookahead copy = s.look_;
+      int32_t fromLookAt = motion.lookAt(copy, s.slot(), t1);
+      int32_t fromTooMany = 0;
+      s.gridTooMany(t1, fromTooMany);
+      if (fromLookAt != fromTooMany) mismatched++;
+      if (copy.chunkStart != s.look_.chunkStart || copy.track.P != s.look_.track.P || copy.track.B != s.look_.track.B)
+        moved++;
+    }
+  }
+};
+
+TEST(TimedStepperGrid, WindowEndReusesTheSizingPositionOnlyWhereLookAtAgrees) {
+  MAXL_Stepper a("a", 2, 5, 80.0f);
+  MAXL_Stepper b("b", 3, 6, 80.0f);
+  ASSERT_TRUE(a.useStepTimer(true));
+  ASSERT_TRUE(b.useStepTimer(true));
+  host::setMicros(0);
+  Harness h;
+  h.open({{0, kind::POSITION, 0}, {1, kind::POSITION, 1}});
+  uint32_t now = 0;
+  auto send = [&](const Bytes& frame) {
+    host::runStepTimer(now);
+    host::pushRx(frame.data(), frame.size());
+    while (host::rxPending()) {
+      now += 20;
+      host::runStepTimer(now);
+      h.loop();
+    }
+  };
+  // 30° to x (unequal rates), short segments so that pieces and segments end often
+  const double th = 30.0 * M_PI / 180.0;
+  const double scale[2] = {std::cos(th) + std::sin(th), std::cos(th) - std::sin(th)};
+  const double v = 300, acc = 10000, ramp = v * v / (2 * acc);  // 4.5 mm
+  std::vector<std::pair<double, msg::TimingSegment>> segs = {
+      {ramp, trapezoid(ramp, 0, v, v, acc)}, {3, trapezoid(3, v, v, v, acc)}, {3, trapezoid(3, v, v, v, acc)},
+      {ramp, trapezoid(ramp, v, v, 0, acc)}, {-ramp, trapezoid(ramp, 0, v, v, acc)}, {-3, trapezoid(3, v, v, v, acc)},
+      {-3, trapezoid(3, v, v, v, acc)},      {-ramp, trapezoid(ramp, v, v, 0, acc)}};
+  uint32_t start = now + 20000;
+  std::vector<GeometrySegment> geometry;
+  double along = 0, end = start;
+  for (const auto& s : segs) {
+    GeometrySegment g;
+    g.length = (float)std::fabs(s.first);
+    for (int m = 0; m < 2; m++) g.p1.push_back(mm((along + s.first) * scale[m]));
+    geometry.push_back(g);
+    along += s.first;
+    end += durationOf(s.second);
+  }
+  std::vector<int32_t> origin = {0, 0};
+  send(h.author.geometry(0, &origin, std::vector<GeometrySegment>(geometry.begin(), geometry.begin() + 4), 2));
+  send(h.author.geometry(4, nullptr, std::vector<GeometrySegment>(geometry.begin() + 4, geometry.end()), 2));
+  std::vector<msg::TimingSegment> timing;
+  for (const auto& s : segs) timing.push_back(s.second);
+  send(h.author.timing(0, 10000.0f, &start, std::vector<msg::TimingSegment>(timing.begin(), timing.begin() + 4)));
+  send(h.author.timing(4, 10000.0f, nullptr, std::vector<msg::TimingSegment>(timing.begin() + 4, timing.end())));
+  MAXL_StepperGridCheck check;
+  while (timeBefore(now, (uint32_t)end + 5000)) {
+    now += 50;
+    host::runStepTimer(now);
+    h.loop();
+    check.at(h.device->motion(), a);
+    check.at(h.device->motion(), b);
+  }
+  EXPECT_GT(check.sized, 10000);
+  EXPECT_GT(check.notSized, 100);  // the pieces' ends of segments, and past them
+  EXPECT_EQ(check.mismatched, 0);
+  EXPECT_EQ(check.moved, 0);
+  EXPECT_EQ(a.steps(), 0);
+  EXPECT_EQ(b.steps(), 0);
+}

@@ -61,7 +61,7 @@ Bytes Author::helloRequest(uint8_t protocol) {
   return frame(seq++, maxl_fw::type::HELLO_REQUEST, [&](maxl_fw::ByteWriter& w) { w.u8(protocol); });
 }
 Bytes Author::ping(uint16_t pingId, uint16_t replyAfter) {
-  return frame(seq++, maxl_fw::type::PING, [&](maxl_fw::ByteWriter& w) { maxl_fw::msg::write(w, maxl_fw::msg::Ping{pingId, replyAfter}); });
+  return frame(seq++, maxl_fw::type::PING_REQUEST, [&](maxl_fw::ByteWriter& w) { maxl_fw::msg::write(w, maxl_fw::msg::Ping{pingId, replyAfter}); });
 }
 Bytes Author::clock(uint32_t deviceRef, uint32_t authorRef, int32_t ratePpb) {
   return frame(seq++, maxl_fw::type::CLOCK,

@@ -15,7 +15,7 @@ using namespace maxl_fw;
 
 MAXL_Device::Answer MAXL_Device::handle(uint8_t t, const uint8_t* p, uint8_t n) {
   switch (t) {
-    case type::PING: return onPing(p, n);
+    case type::PING_REQUEST: return onPing(p, n);
     case type::CLOCK: return onClock(p, n);
     case type::SUBSCRIBE: return onSubscribe(p, n);
     case type::GEOMETRY: return onGeometry(p, n);
@@ -41,7 +41,7 @@ MAXL_Device::Answer MAXL_Device::handle(uint8_t t, const uint8_t* p, uint8_t n) 
 // never see the return trip at its fastest. txTime says when it really went.
 MAXL_Device::Answer MAXL_Device::onPing(const uint8_t* p, uint8_t n) {
   msg::Ping m;
-  if (!msg::parse(p, n, m)) return nack(nack::MALFORMED, type::PING);
+  if (!msg::parse(p, n, m)) return nack(nack::MALFORMED, type::PING_REQUEST);
   if (pongPending_) sendPong(false);  // one waits at a time: the older one goes now
   pongId_ = m.pingId;
   pongReceivedAt_ = rx_.arrivedAt();

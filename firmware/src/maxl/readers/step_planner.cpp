@@ -70,7 +70,8 @@ __attribute__((noinline)) void MAXL_StepPlanner::restart(MAXL_Device& device, MA
 uint32_t MAXL_StepPlanner::windowEnd(const Motion& motion, MAXL_Stepper* const* steppers, uint8_t n, uint32_t until,
                                      int32_t* p1) {
   uint32_t t1 = until;
-  if (steppers[0]->look_.state != Lookahead::REST) {
+  bool sized = steppers[0]->look_.state != Lookahead::REST;  // p1[] then holds gridTooMany(t1)'s positions
+  if (sized) {
     uint16_t w = MAXL_STEP_WINDOW_MAX_US;
     for (uint8_t i = 0; i < n; i++) {
       uint16_t wi = steppers[i]->gridWindow(motion);
@@ -80,12 +81,13 @@ uint32_t MAXL_StepPlanner::windowEnd(const Motion& motion, MAXL_Stepper* const* 
       t1 = (planned_ & ~(uint32_t)(w - 1)) + w;  // the next multiple of w
       if (timeBefore(until, t1)) t1 = until;
       bool tooMany = false;
-      for (uint8_t i = 0; i < n; i++) tooMany |= steppers[i]->gridTooMany(t1);
+      for (uint8_t i = 0; i < n; i++) tooMany |= steppers[i]->gridTooMany(t1, p1[i]);
       if (!tooMany || w <= MAXL_STEP_WINDOW_MIN_US) break;
       w >>= 1;
     }
   }
-  for (uint8_t i = 0; i < n; i++) p1[i] = steppers[i]->gridEnd(motion, t1);
+  for (uint8_t i = 0; i < n; i++)
+    if (!sized || !steppers[i]->gridSized(t1)) p1[i] = steppers[i]->gridEnd(motion, t1);
   return t1;
 }
 

@@ -146,12 +146,12 @@ __attribute__((noinline)) uint16_t MAXL_Stepper::gridWindow(const Motion& motion
 // Where the slot would be at t (RUN or BRAKE), without moving the walk: the
 // track's quadratic on a copy, chunk by chunk (fixed_point.h). Only to size a
 // window, so a segment's end is not snapped to its p1 here.
-__attribute__((noinline)) bool MAXL_Stepper::gridTooMany(uint32_t t) const {
+__attribute__((noinline)) bool MAXL_Stepper::gridTooMany(uint32_t t, int32_t& p) const {
   FixedTrack k = look_.track;
   uint32_t x = t - look_.chunkStart;
   for (; x >= 65536ul; x -= 65536ul) k.nextChunk();
   int32_t w = (int32_t)((uint32_t)k.B + (uint32_t)mulhi16Cold(k.C, (uint16_t)x));
-  int32_t p = (int32_t)((uint32_t)k.P + (uint32_t)mulhi16Cold(w, (uint16_t)x));
+  p = (int32_t)((uint32_t)k.P + (uint32_t)mulhi16Cold(w, (uint16_t)x));
   return tooManySteps((int32_t)((uint32_t)p - (uint32_t)plannedUnits_));
 }
 

@@ -85,6 +85,7 @@ class MAXL_Stepper : public MAXL_TrackPositionLinear {
   bool timed_ : 1;
 #if MAXL_STEP_TIMER
   friend class MAXL_StepPlanner;
+  friend struct MAXL_StepperGridCheck;  // the host test of gridSized (firmware/test/step_timing_test.cpp)
   bool wantTimer_ : 1;
   bool synced_ : 1;  // look_ and plannedUnits_ follow the planner's grid
   maxl_fw::Lookahead look_;
@@ -97,10 +98,20 @@ class MAXL_Stepper : public MAXL_TrackPositionLinear {
   void gridJoin(const maxl_fw::Motion& motion, uint32_t t);
   // The longest window this stepper's slot allows for the bend (windowFor).
   uint16_t gridWindow(const maxl_fw::Motion& motion) const;
-  // Whether a window ending at t would hold more than MAXL_STEP_WINDOW_STEPS steps.
-  bool gridTooMany(uint32_t t) const;
+  // Whether a window ending at t would hold more than MAXL_STEP_WINDOW_STEPS
+  // steps; `p` gets the position at t it computed (unsnapped, for gridEnd).
+  bool gridTooMany(uint32_t t, int32_t& p) const;
   // The position at the window's end t1 (the walk moves on to it).
   int32_t gridEnd(const maxl_fw::Motion& motion, uint32_t t1);
+  // Whether gridTooMany(t1)'s position is what gridEnd(t1) would return:
+  // Motion::lookAt computes exactly gridTooMany's sum on the walk's own track
+  // when the walk runs (not at rest: a rest position), t1 is not the piece's
+  // end (where a segment's end snaps to its p1) and no chunk is crossed
+  // (t1 − chunkStart < 2^16 µs, which also rules out t1 before chunkStart,
+  // which lookAt would clamp); the walk then does not move.
+  bool gridSized(uint32_t t1) const {
+    return look_.state != maxl_fw::Lookahead::REST && t1 != look_.pieceEnd && t1 - look_.chunkStart < 65536ul;
+  }
   // The window [t0, t1] to p1 becomes step times.
   void gridPlan(const maxl_fw::Motion& motion, uint32_t t0, uint32_t t1, int32_t p1, uint32_t now);
   // The steps of one window [t0, t1] from p0 to p1 on a piece of half acceleration c.

@@ -343,7 +343,7 @@ CodecError checkPayload(uint8_t t, const uint8_t* p, uint8_t n, const DecodeCont
   bool ok;
   switch (t) {
     case type::HELLO_REQUEST: { HelloRequest m; ok = parse(p, n, m); break; }
-    case type::PING: { Ping m; ok = parse(p, n, m); break; }
+    case type::PING_REQUEST: { Ping m; ok = parse(p, n, m); break; }
     case type::CLOCK: { Clock m; ok = parse(p, n, m); break; }
     case type::SUBSCRIBE: { Subscribe m; ok = parse(p, n, m); break; }
     case type::GEOMETRY: { GeometryView v; ok = v.parse(p, n, context.positionSlots); break; }

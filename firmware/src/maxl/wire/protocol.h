@@ -23,7 +23,9 @@ const uint8_t DUPLICATE_WINDOW = 16;    // seqs before `expected` that count as 
 namespace type {
 // author to device
 const uint8_t HELLO_REQUEST = 0x01;
-const uint8_t PING = 0x02;
+// the wire's PING (docs/protocol.md); the C++ name differs because the
+// ATmega2560's <avr/io.h> defines PING (port G's input register) as a macro
+const uint8_t PING_REQUEST = 0x02;
 const uint8_t CLOCK = 0x03;
 const uint8_t SUBSCRIBE = 0x04;
 const uint8_t GEOMETRY = 0x05;
