@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -770,22 +771,26 @@ TEST(TimedStepper, NewSessionDropsThePlan) {
 
 // ---------------------------------------------------------------- one grid, several steppers
 
-// Two steppers on one device, on slots 0 and 1, planned on the device's one
-// window grid (step_planner.h) and stepped from one interrupt: a CoreXY line
-// at 30° to x at 300 mm/s (motor a = x + y at 1.366·v, motor b = x − y at
-// 0.366·v: 32 800 and 8 780 steps/s), and back. Every step of each motor is
-// there, none early, none later than its own step period, and each within the
-// design's lag.
-TEST(TimedStepperGrid, TwoSteppersAtUnequalRatesEveryStepOnTime) {
-  MAXL_Stepper a("a", 2, 5, 80.0f);
-  MAXL_Stepper b("b", 3, 6, 80.0f);
-  ASSERT_TRUE(a.useStepTimer(true));
-  ASSERT_TRUE(b.useStepTimer(true));
-  host::setMicros(0);
+namespace {
+
+// Two steppers on one device, on slots 0 and 1 (80 steps/mm, STEP 2 and 3, DIR
+// 5 and 6), both on the step timer, given a CoreXY line at 30° to x: motor
+// a = x + y moves 1.366·s, motor b = x − y 0.366·s for s along the line.
+struct PairRig {
+  MAXL_Stepper a{"a", 2, 5, 80.0f};
+  MAXL_Stepper b{"b", 3, 6, 80.0f};
   Harness h;
-  h.open({{0, kind::POSITION, 0}, {1, kind::POSITION, 1}});
   uint32_t now = 0;
-  auto send = [&](const Bytes& frame) {
+  const double th = 30.0 * M_PI / 180.0;
+  const double scale[2] = {std::cos(th) + std::sin(th), std::cos(th) - std::sin(th)};
+
+  PairRig() {
+    EXPECT_TRUE(a.useStepTimer(true));
+    EXPECT_TRUE(b.useStepTimer(true));
+    host::setMicros(0);
+    h.open({{0, kind::POSITION, 0}, {1, kind::POSITION, 1}});
+  }
+  void send(const Bytes& frame) {
     host::runStepTimer(now);
     host::pushRx(frame.data(), frame.size());
     while (host::rxPending()) {
@@ -793,49 +798,67 @@ TEST(TimedStepperGrid, TwoSteppersAtUnequalRatesEveryStepOnTime) {
       host::runStepTimer(now);
       h.loop();
     }
-  };
-  const double th = 30.0 * M_PI / 180.0;
-  const double scale[2] = {std::cos(th) + std::sin(th), std::cos(th) - std::sin(th)};
+  }
+  // Sends `segs` (signed mm along the line, their timing) from 20 ms from now, the
+  // first four in one GEOMETRY and TIMING and the rest in another; returns each
+  // motor's exact path.
+  std::array<Path, 2> sendLine(const std::vector<std::pair<double, msg::TimingSegment>>& segs) {
+    uint32_t start = now + 20000;
+    std::array<Path, 2> path;
+    std::vector<GeometrySegment> geometry;
+    double along = 0, t = start;
+    for (const auto& s : segs) {
+      GeometrySegment g;
+      g.length = (float)std::fabs(s.first);
+      for (int m = 0; m < 2; m++) {
+        path[m].pieces.push_back({s.second, t, (double)mm(along * scale[m]), (double)mm((along + s.first) * scale[m])});
+        g.p1.push_back(mm((along + s.first) * scale[m]));
+      }
+      geometry.push_back(g);
+      along += s.first;
+      t += durationOf(s.second);
+    }
+    std::vector<int32_t> origin = {0, 0};
+    send(h.author.geometry(0, &origin, std::vector<GeometrySegment>(geometry.begin(), geometry.begin() + 4), 2));
+    send(h.author.geometry(4, nullptr, std::vector<GeometrySegment>(geometry.begin() + 4, geometry.end()), 2));
+    std::vector<msg::TimingSegment> timing;
+    for (const auto& s : segs) timing.push_back(s.second);
+    send(h.author.timing(0, 10000.0f, &start, std::vector<msg::TimingSegment>(timing.begin(), timing.begin() + 4)));
+    send(h.author.timing(4, 10000.0f, nullptr, std::vector<msg::TimingSegment>(timing.begin() + 4, timing.end())));
+    return path;
+  }
+};
+
+}  // namespace
+
+// Two steppers on one device, on slots 0 and 1, planned on the device's one
+// window grid (step_planner.h) and stepped from one interrupt: a CoreXY line
+// at 30° to x at 300 mm/s (motor a = x + y at 1.366·v, motor b = x − y at
+// 0.366·v: 32 800 and 8 780 steps/s), and back. Every step of each motor is
+// there, none early, none later than its own step period, and each within the
+// design's lag.
+TEST(TimedStepperGrid, TwoSteppersAtUnequalRatesEveryStepOnTime) {
+  PairRig rig;
   // out 60 mm along the line and back: ramps at 10 000 mm/s², 300 mm/s cruise
   const double v = 300, acc = 10000, ramp = v * v / (2 * acc);  // 4.5 mm
-  std::vector<std::pair<double, msg::TimingSegment>> segs = {
-      {ramp, trapezoid(ramp, 0, v, v, acc)},      {60 - 2 * ramp, trapezoid(60 - 2 * ramp, v, v, v, acc)},
-      {ramp, trapezoid(ramp, v, v, 0, acc)},      {-ramp, trapezoid(ramp, 0, v, v, acc)},
-      {-(60 - 2 * ramp), trapezoid(60 - 2 * ramp, v, v, v, acc)}, {-ramp, trapezoid(ramp, v, v, 0, acc)}};
-  uint32_t start = now + 20000;
-  Path path[2];
-  std::vector<GeometrySegment> geometry;
-  double along = 0, t = start;
-  for (const auto& s : segs) {
-    GeometrySegment g;
-    g.length = (float)std::fabs(s.first);
-    for (int m = 0; m < 2; m++) {
-      path[m].pieces.push_back({s.second, t, (double)mm(along * scale[m]), (double)mm((along + s.first) * scale[m])});
-      g.p1.push_back(mm((along + s.first) * scale[m]));
-    }
-    geometry.push_back(g);
-    along += s.first;
-    t += durationOf(s.second);
-  }
-  std::vector<int32_t> origin = {0, 0};
-  send(h.author.geometry(0, &origin, std::vector<GeometrySegment>(geometry.begin(), geometry.begin() + 4), 2));
-  send(h.author.geometry(4, nullptr, std::vector<GeometrySegment>(geometry.begin() + 4, geometry.end()), 2));
-  std::vector<msg::TimingSegment> timing;
-  for (const auto& s : segs) timing.push_back(s.second);
-  send(h.author.timing(0, 10000.0f, &start, std::vector<msg::TimingSegment>(timing.begin(), timing.begin() + 4)));
-  send(h.author.timing(4, 10000.0f, nullptr, std::vector<msg::TimingSegment>(timing.begin() + 4, timing.end())));
+  std::array<Path, 2> path = rig.sendLine({{ramp, trapezoid(ramp, 0, v, v, acc)},
+                                           {60 - 2 * ramp, trapezoid(60 - 2 * ramp, v, v, v, acc)},
+                                           {ramp, trapezoid(ramp, v, v, 0, acc)},
+                                           {-ramp, trapezoid(ramp, 0, v, v, acc)},
+                                           {-(60 - 2 * ramp), trapezoid(60 - 2 * ramp, v, v, v, acc)},
+                                           {-ramp, trapezoid(ramp, v, v, 0, acc)}});
   host::clearPinLog();
   uint32_t end = (uint32_t)path[0].end() + 5000;
-  while (timeBefore(now, end)) {
-    now += 50;
-    host::runStepTimer(now);
-    h.loop();
+  while (timeBefore(rig.now, end)) {
+    rig.now += 50;
+    host::runStepTimer(rig.now);
+    rig.h.loop();
   }
   const uint8_t stepPins[2] = {2, 3}, dirPins[2] = {5, 6};
   for (int m = 0; m < 2; m++) {
     std::vector<Edge> edges = stepEdges(stepPins[m], dirPins[m]);
     // out: steps up to the far end, then back down to 0
-    int32_t far = stepOf(mm(60 * scale[m]));
+    int32_t far = stepOf(mm(60 * rig.scale[m]));
     std::vector<Edge> out(edges.begin(), edges.begin() + std::min<size_t>(edges.size(), (size_t)far));
     Path outPath = path[m], backPath = path[m];
     outPath.pieces.resize(3);
@@ -852,8 +875,8 @@ TEST(TimedStepperGrid, TwoSteppersAtUnequalRatesEveryStepOnTime) {
     EXPECT_EQ(vb.late, 0) << "motor " << m << " max lag " << vb.maxLagUs;
     EXPECT_EQ(vb.tooLaggy, 0) << "motor " << m << " max lag " << vb.maxLagUs;
   }
-  EXPECT_EQ(a.steps(), 0);
-  EXPECT_EQ(b.steps(), 0);
+  EXPECT_EQ(rig.a.steps(), 0);
+  EXPECT_EQ(rig.b.steps(), 0);
 }
 
 // The planner reuses gridTooMany(t1)'s position as the window's end where
@@ -887,61 +910,26 @@ struct MAXL_StepperGridCheck {
 };
 
 TEST(TimedStepperGrid, WindowEndReusesTheSizingPositionOnlyWhereLookAtAgrees) {
-  MAXL_Stepper a("a", 2, 5, 80.0f);
-  MAXL_Stepper b("b", 3, 6, 80.0f);
-  ASSERT_TRUE(a.useStepTimer(true));
-  ASSERT_TRUE(b.useStepTimer(true));
-  host::setMicros(0);
-  Harness h;
-  h.open({{0, kind::POSITION, 0}, {1, kind::POSITION, 1}});
-  uint32_t now = 0;
-  auto send = [&](const Bytes& frame) {
-    host::runStepTimer(now);
-    host::pushRx(frame.data(), frame.size());
-    while (host::rxPending()) {
-      now += 20;
-      host::runStepTimer(now);
-      h.loop();
-    }
-  };
+  PairRig rig;
   // 30° to x (unequal rates), short segments so that pieces and segments end often
-  const double th = 30.0 * M_PI / 180.0;
-  const double scale[2] = {std::cos(th) + std::sin(th), std::cos(th) - std::sin(th)};
   const double v = 300, acc = 10000, ramp = v * v / (2 * acc);  // 4.5 mm
-  std::vector<std::pair<double, msg::TimingSegment>> segs = {
-      {ramp, trapezoid(ramp, 0, v, v, acc)}, {3, trapezoid(3, v, v, v, acc)}, {3, trapezoid(3, v, v, v, acc)},
-      {ramp, trapezoid(ramp, v, v, 0, acc)}, {-ramp, trapezoid(ramp, 0, v, v, acc)}, {-3, trapezoid(3, v, v, v, acc)},
-      {-3, trapezoid(3, v, v, v, acc)},      {-ramp, trapezoid(ramp, v, v, 0, acc)}};
-  uint32_t start = now + 20000;
-  std::vector<GeometrySegment> geometry;
-  double along = 0, end = start;
-  for (const auto& s : segs) {
-    GeometrySegment g;
-    g.length = (float)std::fabs(s.first);
-    for (int m = 0; m < 2; m++) g.p1.push_back(mm((along + s.first) * scale[m]));
-    geometry.push_back(g);
-    along += s.first;
-    end += durationOf(s.second);
-  }
-  std::vector<int32_t> origin = {0, 0};
-  send(h.author.geometry(0, &origin, std::vector<GeometrySegment>(geometry.begin(), geometry.begin() + 4), 2));
-  send(h.author.geometry(4, nullptr, std::vector<GeometrySegment>(geometry.begin() + 4, geometry.end()), 2));
-  std::vector<msg::TimingSegment> timing;
-  for (const auto& s : segs) timing.push_back(s.second);
-  send(h.author.timing(0, 10000.0f, &start, std::vector<msg::TimingSegment>(timing.begin(), timing.begin() + 4)));
-  send(h.author.timing(4, 10000.0f, nullptr, std::vector<msg::TimingSegment>(timing.begin() + 4, timing.end())));
+  std::array<Path, 2> path = rig.sendLine(
+      {{ramp, trapezoid(ramp, 0, v, v, acc)}, {3, trapezoid(3, v, v, v, acc)}, {3, trapezoid(3, v, v, v, acc)},
+       {ramp, trapezoid(ramp, v, v, 0, acc)}, {-ramp, trapezoid(ramp, 0, v, v, acc)}, {-3, trapezoid(3, v, v, v, acc)},
+       {-3, trapezoid(3, v, v, v, acc)},      {-ramp, trapezoid(ramp, v, v, 0, acc)}});
+  const double end = path[0].end();
   MAXL_StepperGridCheck check;
-  while (timeBefore(now, (uint32_t)end + 5000)) {
-    now += 50;
-    host::runStepTimer(now);
-    h.loop();
-    check.at(h.device->motion(), a);
-    check.at(h.device->motion(), b);
+  while (timeBefore(rig.now, (uint32_t)end + 5000)) {
+    rig.now += 50;
+    host::runStepTimer(rig.now);
+    rig.h.loop();
+    check.at(rig.h.device->motion(), rig.a);
+    check.at(rig.h.device->motion(), rig.b);
   }
   EXPECT_GT(check.sized, 10000);
   EXPECT_GT(check.notSized, 100);  // the pieces' ends of segments, and past them
   EXPECT_EQ(check.mismatched, 0);
   EXPECT_EQ(check.moved, 0);
-  EXPECT_EQ(a.steps(), 0);
-  EXPECT_EQ(b.steps(), 0);
+  EXPECT_EQ(rig.a.steps(), 0);
+  EXPECT_EQ(rig.b.steps(), 0);
 }
