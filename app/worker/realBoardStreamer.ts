@@ -23,9 +23,11 @@
  * The timer and task terms are the author's thread coming late, on a quiet
  * machine. A busy one holds that thread back for tens of ms now and then, more
  * than a PING that happened not to wait behind it shows. So the streamer also
- * measures how late its pumps come, and whatever they came later than timer +
- * task (8 ms) in the last 10 s is added to the lead and the start lead
- * (`lagAllowance_us`, core/net/pumpLag.ts): 13.28 ms stays the margin where the
+ * measures how late its pumps and the worker clock's other timers come, and
+ * whatever they came later than timer + task (8 ms) in the last 10 s is added,
+ * twice over (the next hold-back may be longer), to the lead and the start lead;
+ * and the round trip it counts is the worst of those 10 s (`lagAllowance_us`,
+ * `lagCover`, core/time/recentWorst.ts): 13.28 ms stays the margin where the
  * machine keeps to it, and a loaded machine gets the lead its hold-backs need.
  *
  * At USB round trips (1.5–3 ms for a USB full-speed CDC board; ~3 ms for the

@@ -39,7 +39,7 @@ import type { Message, MessageOf } from './messages.ts';
 import { geometryMessages, type PositionSlot } from './segmentEncoding.ts';
 import { timingForPath } from './timedPath.ts';
 import { MAX_PAYLOAD } from './protocol.ts';
-import { PumpLag } from './pumpLag.ts';
+import { RecentWorst } from '../time/recentWorst.ts';
 
 /** What one device reads of the trajectory, and how to reach it. */
 export interface DeviceBinding {
@@ -75,13 +75,24 @@ export interface StreamerOptions {
   tick_us: number;
   /**
    * The part of the margins (µs) meant for the author's own thread coming late (a
-   * timer's clamp, a long task): whatever the pumps of the last `lagWindow_us` came
-   * later than this is added to the lead and to the start lead (pumpLag.ts).
-   * Infinity (the default): the lead does not follow the pumps' lateness.
+   * timer's clamp, a long task). With it finite (real boards), the streamer
+   * follows the machine's recent hold-backs (core/time/recentWorst.ts): whatever
+   * its pumps, or the scheduler's other timers (Scheduler.recentLateness_us), came
+   * later than this within the last `lagWindow_us` is added to the lead, the start
+   * lead and the stall limit; and the round trip in them is the worst the links
+   * showed over that window, not only their last 64 pings. Infinity (the default):
+   * none of this, the margins are fixed.
    */
   lagAllowance_us: number;
-  /** how far back (µs) the pumps' lateness is remembered */
+  /** how far back (µs) the hold-backs and round trips are remembered */
   lagWindow_us: number;
+  /**
+   * How many times over the excess hold-back is covered: a machine that has just
+   * held the thread back by x will likely do so again, and not always by less (the
+   * WebSerial spec's loaded runs: a 70.7 ms lead grown after a hold-back, then a
+   * pump 76.6 ms late). 2: the lead covers a hold-back up to twice the worst seen.
+   */
+  lagCover: number;
 }
 
 export const DEFAULT_STREAMER: StreamerOptions = {
@@ -94,6 +105,7 @@ export const DEFAULT_STREAMER: StreamerOptions = {
   tick_us: 1_000,
   lagAllowance_us: Infinity,
   lagWindow_us: 10_000_000,
+  lagCover: 2,
 };
 
 /** How rarely a frame may miss its lead on a lossy link (resendAllowance_us). */
@@ -158,7 +170,11 @@ export class Streamer {
   private readonly wireOrder: Array<{ seg: Segment; id: number }> = [];
   /** When the last pump ran, and where the timed path ended after it (author µs). */
   private lastPump: { at_us: number; timedEnd_us: number; more: boolean; stalled: boolean } | null = null;
-  private readonly pumpLag: PumpLag;
+  private readonly pumpLag: RecentWorst;
+  /** The worst round trip (rttHigh) of any device at each pump, when the lead follows the machine (lagAllowance_us finite). */
+  private readonly recentTrip: RecentWorst;
+  /** When this streamer began (author µs): the scheduler's hold-backs before it are not its own. */
+  private readonly createdAt_us: number;
   /** The latest reason the devices could run out of timing (runOutReason). */
   private holdBack: { at_us: number; text: string } | null = null;
 
@@ -174,7 +190,9 @@ export class Streamer {
     this.devices = devices.map((binding) => ({ binding, timedEnd: null, timedEndAuthor: NaN, needP0: true, pendingEvents: [], geometryLog: [], unanswered: 0 }));
     this.onEvent = onEvent;
     this.options = { ...DEFAULT_STREAMER, ...options };
-    this.pumpLag = new PumpLag(this.options.lagWindow_us);
+    this.pumpLag = new RecentWorst(this.options.lagWindow_us);
+    this.recentTrip = new RecentWorst(this.options.lagWindow_us);
+    this.createdAt_us = scheduler.now();
   }
 
   /**
@@ -201,36 +219,56 @@ export class Streamer {
     return resends * device.resendAfter_us;
   }
 
+  /** Whether the margins follow the machine's recent hold-backs and round trips (lagAllowance_us finite: real boards). */
+  private get followsMachine(): boolean {
+    return Number.isFinite(this.options.lagAllowance_us);
+  }
+
+  /**
+   * The high round trip (µs) to count for `device`: its recent worst (the last 64
+   * pings); when the margins follow the machine, at least the worst any device
+   * showed over the window (recentTrip), which pings of a second or two forget.
+   */
+  private trip_us(device: StreamDevice): number {
+    return this.followsMachine ? Math.max(device.rttHigh_us, this.recentTrip.worst(this.scheduler.now())) : device.rttHigh_us;
+  }
+
   /** The largest over the devices of a high round trip plus its resend allowance (µs). */
   private get slowestTrip_us(): number {
     let worst = 0;
-    for (const d of this.devices) worst = Math.max(worst, d.binding.device.rttHigh_us + this.resendAllowance_us(d.binding.device));
+    for (const d of this.devices) worst = Math.max(worst, this.trip_us(d.binding.device) + this.resendAllowance_us(d.binding.device));
     return worst;
   }
 
-  /** µs of the pumps' recent lateness beyond what the margins allow for it (lagAllowance_us). */
+  /**
+   * µs added for the recent hold-backs: what the worst lateness of the pumps, or
+   * of the scheduler's other timers since this streamer began, over the window,
+   * came beyond the margins' allowance (lagAllowance_us), lagCover times over.
+   */
   private get lagExcess_us(): number {
-    if (!Number.isFinite(this.options.lagAllowance_us)) return 0;
-    return Math.max(0, this.pumpLag.worst_us(this.scheduler.now()) - this.options.lagAllowance_us);
+    if (!this.followsMachine) return 0;
+    const now = this.scheduler.now();
+    const late = Math.max(this.pumpLag.worst(now), this.scheduler.recentLateness_us?.(this.createdAt_us) ?? 0);
+    return this.options.lagCover * Math.max(0, late - this.options.lagAllowance_us);
   }
 
-  /** µs of motion kept ahead: 2·RTT (the slowest device's recent worst) plus a margin, plus the resend allowance and the pumps' excess lateness. */
+  /** µs of motion kept ahead: 2·RTT (the slowest device's recent worst) plus a margin, plus the resend allowance and the excess hold-backs. */
   get lead_us(): number {
     let worst = 0;
-    for (const d of this.devices) worst = Math.max(worst, 2 * d.binding.device.rttHigh_us + this.resendAllowance_us(d.binding.device));
+    for (const d of this.devices) worst = Math.max(worst, 2 * this.trip_us(d.binding.device) + this.resendAllowance_us(d.binding.device));
     return Math.max(this.options.minLead_us, worst + this.options.leadMargin_us + this.lagExcess_us);
   }
 
   /**
    * A frame unacknowledged for this long (µs) holds all timing back: a high round
-   * trip plus 1 ms, plus the resend allowance, plus the pumps' excess lateness (the
+   * trip plus 1 ms, plus the resend allowance, plus the excess hold-backs (the
    * author's thread reads the acks: held back, it reads them late).
    */
   get stallLimit_us(): number {
     return Math.max(3_000, this.slowestTrip_us + 1_000 + this.lagExcess_us);
   }
 
-  /** µs from now to the start of a segment after rest: one RTT (the slowest device's worst) plus a margin, plus the resend allowance and the pumps' excess lateness. */
+  /** µs from now to the start of a segment after rest: one RTT (the slowest device's worst) plus a margin, plus the resend allowance and the excess hold-backs. */
   get startLead_us(): number {
     return this.slowestTrip_us + this.options.startMargin_us + this.lagExcess_us;
   }
@@ -370,7 +408,7 @@ export class Streamer {
     if (this.tickTimer) this.tickTimer.cancel();
     this.tickTimer = this.scheduler.at(at, () => {
       this.tickTimer = null;
-      this.pumpLag.note(at, this.scheduler.now());
+      this.pumpLag.noteLateness(at, this.scheduler.now());
       this.pump();
     });
   }
@@ -396,6 +434,11 @@ export class Streamer {
   private pumpOnce(): void {
     if (!this.running) return;
     const now = this.scheduler.now();
+    if (this.followsMachine) {
+      let trip = 0;
+      for (const d of this.devices) trip = Math.max(trip, d.binding.device.rttHigh_us);
+      this.recentTrip.note(now, trip);
+    }
     // Executed segments leave the devices' queues and the author's live queue.
     while (this.timed > 0 && this.sent[0].endTime_us <= now) {
       this.wireIds.delete(this.sent[0]);

@@ -3,13 +3,15 @@
  * (Streamer.runOutReason, which the runtime's LINK_LOST error carries): a device
  * whose ack is overdue, or a pump that came only after the timed path had ended.
  * And a lead that follows how late the pumps have come (lagAllowance_us,
- * pumpLag.ts), so that a thread held back once is covered the next time.
+ * core/time/recentWorst.ts), so that a thread held back once is covered the
+ * next time, whichever of its timers saw it, and the worst round trip of a while.
  */
 import { describe, expect, it } from 'vitest';
 import { lightPainter } from '../sim/presets/index.ts';
 import { resolveConfig } from '../config/validate.ts';
 import { VirtualScheduler } from '../time/virtualScheduler.ts';
 import type { Timer } from '../time/scheduler.ts';
+import { RecentWorst } from '../time/recentWorst.ts';
 import { TrajectoryQueue } from '../trajectory/queue.ts';
 import { ClockMap } from './clockMap.ts';
 import type { SendResult, StreamDevice } from './streamDevice.ts';
@@ -18,7 +20,7 @@ import { Streamer, type StreamerOptions } from './streamer.ts';
 /** A device that acknowledges at once, until told to hold its acks. */
 class AckingDevice implements StreamDevice {
   readonly isOpen = true;
-  readonly rttHigh_us = 1_000;
+  rttHigh_us = 1_000;
   readonly resendAfter_us = 4_000;
   readonly frameLoss = 0;
   readonly clockMap = new ClockMap(0, 0, 1);
@@ -64,6 +66,17 @@ class HeldBack extends VirtualScheduler {
     if (this.from_us.length === 0 || at_us < this.from_us[0]) return super.at(at_us, callback);
     this.from_us.shift();
     return super.at(at_us + this.late_us, callback);
+  }
+}
+
+/** Virtual time that reports hold-backs of its thread as a RealScheduler does (recentLateness_us), here set by hand, remembered 100 ms. */
+class ReportsLateness extends VirtualScheduler {
+  private readonly late = new RecentWorst(100_000);
+  heldBack(late_us: number): void {
+    this.late.note(this.now(), late_us);
+  }
+  recentLateness_us(since_us: number): number {
+    return this.late.worst(this.now(), since_us);
   }
 }
 
@@ -138,11 +151,11 @@ describe('a lead that follows the pumps’ lateness (lagAllowance_us)', () => {
     expect(streamer.startLead_us).toBe(14_280);
     expect(streamer.stallLimit_us).toBe(3_000);
     await scheduler.runUntil(140_000);
-    // The pump due at ≥ 100 ms ran 30 ms late: 22 ms beyond the allowance.
-    expect(streamer.lead_us).toBe(15_280 + 22_000);
-    expect(streamer.startLead_us).toBe(14_280 + 22_000);
-    // And an ack may be late by as much before all timing is held back: RTT + 1 ms + 22 ms.
-    expect(streamer.stallLimit_us).toBe(1_000 + 1_000 + 22_000);
+    // The pump due at ≥ 100 ms ran 30 ms late: 22 ms beyond the allowance, covered twice (lagCover).
+    expect(streamer.lead_us).toBe(15_280 + 44_000);
+    expect(streamer.startLead_us).toBe(14_280 + 44_000);
+    // And an ack may be late by as much before all timing is held back: RTT + 1 ms + 44 ms.
+    expect(streamer.stallLimit_us).toBe(1_000 + 1_000 + 44_000);
     await scheduler.runUntil(400_000);
     expect(streamer.lead_us).toBe(15_280);
     streamer.stop();
@@ -170,5 +183,46 @@ describe('a lead that follows the pumps’ lateness (lagAllowance_us)', () => {
     // 2·1 ms + DEFAULT_STREAMER's 2.5 ms.
     expect(streamer.lead_us).toBe(4_500);
     streamer.stop();
+  });
+
+  it("grows by the scheduler's hold-backs that no pump saw, since the streamer began only", async () => {
+    const scheduler = new ReportsLateness(0);
+    scheduler.heldBack(50_000); // before the streamer: not its own
+    await scheduler.runUntil(1_000);
+    const { streamer } = streamTo(scheduler, ['a'], { ...REAL, lagWindow_us: 200_000 });
+    await scheduler.runUntil(50_000);
+    expect(streamer.lead_us).toBe(15_280);
+    // A ping's timer (say) came 20 ms late between two pumps that both ran on time.
+    scheduler.heldBack(20_000);
+    expect(streamer.lead_us).toBe(15_280 + 2 * 12_000);
+    expect(streamer.stallLimit_us).toBe(2_000 + 2 * 12_000);
+    // Forgotten a window later (the scheduler's window here: 100 ms).
+    await scheduler.runUntil(160_000);
+    expect(streamer.lead_us).toBe(15_280);
+    streamer.stop();
+  });
+
+  it('keeps the worst round trip of the window, where the last 64 pings forget it', async () => {
+    for (const lagAllowance_us of [8_000, Infinity]) {
+      const scheduler = new VirtualScheduler(0);
+      const { streamer, devices } = streamTo(scheduler, ['a', 'b'], { ...REAL, lagAllowance_us, lagWindow_us: 200_000 });
+      await scheduler.runUntil(50_000);
+      devices[1].rttHigh_us = 20_000; // a round trip held up on its way (the browser's IO thread, the OS)
+      await scheduler.runUntil(60_000);
+      devices[1].rttHigh_us = 1_000; // and the pings' recent worst is small again
+      await scheduler.runUntil(100_000);
+      if (lagAllowance_us === Infinity) {
+        expect(streamer.lead_us).toBe(15_280);
+        expect(streamer.startLead_us).toBe(14_280);
+      } else {
+        // 2·20 ms + 13.28 ms, and one trip of 20 ms + 13.28 ms, for a window after the spike.
+        expect(streamer.lead_us).toBe(53_280);
+        expect(streamer.startLead_us).toBe(33_280);
+        expect(streamer.stallLimit_us).toBe(21_000);
+        await scheduler.runUntil(270_000);
+        expect(streamer.lead_us).toBe(15_280);
+      }
+      streamer.stop();
+    }
   });
 });

@@ -21,6 +21,12 @@ export interface Scheduler {
   after(delay_us: number, callback: () => void): Timer;
   /** Resolves after `delay_us`. */
   sleep(delay_us: number): Promise<void>;
+  /**
+   * On the wall clock only: the worst lateness (µs) of this scheduler's timers
+   * that fired at or after `since_us`, over its recent window (RealScheduler):
+   * how long its thread was held back lately. Virtual time is never late.
+   */
+  recentLateness_us?(since_us: number): number;
 }
 
 export abstract class BaseScheduler implements Scheduler {
