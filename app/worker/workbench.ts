@@ -33,6 +33,7 @@ import type { OpenedPort, PortApi, PortKey, SerialPortLike } from './serialPorts
 import { serialAccess } from './workerSerial.ts';
 import { decimate, overviewTolerance } from './previewDecimation.ts';
 import { readyNotes, sampleGapNote } from './runtimeNotes.ts';
+import { LeadWatch } from './leadWatch.ts';
 import { presetConfig, presetViews, truthOf } from './simulatedMachines.ts';
 import { SnapshotBuilder } from './snapshotBuilder.ts';
 import type { ToolContext, WorkbenchTool } from './toolContext.ts';
@@ -67,6 +68,8 @@ export class Workbench implements ToolContext {
   /** Restarts run one after another. */
   private restarting: Promise<void> = Promise.resolve();
   private readonly snapshots = new SnapshotBuilder();
+  /** Tells the user when real boards' lead grew because the machine held the worker back. */
+  private readonly leadWatch = new LeadWatch();
   private readonly jobs: JobRunner;
   private readonly jog: JogController;
   private readonly tools: Map<string, WorkbenchTool<ToolCommand>>;
@@ -106,10 +109,13 @@ export class Workbench implements ToolContext {
       return;
     }
     switch (cmd.type) {
-      case 'frame':
+      case 'frame': {
+        const lead = this.maxl && this.leadWatch.check(this.scheduler.now(), this.maxl.lead_us);
+        if (lead) this.log(lead.level, lead.code, lead.message);
         this.post(this.snapshot());
         for (const tool of this.tools.values()) tool.frame();
         return;
+      }
       case 'use-preset':
         void this.usePreset(cmd.presetId, cmd.config);
         return;
@@ -304,6 +310,7 @@ export class Workbench implements ToolContext {
       this.setPhase('ready', '');
       this.log('info', 'READY', `Ready: ${this.devices.known().map((d) => d.name).join(', ')} in sync.`);
       for (const n of readyNotes(streamer ?? null, maxl.lead_us, maxl.feedLimit)) this.log(n.level, n.code, n.message);
+      this.leadWatch.ready(streamer ? maxl.lead_us : NaN);
     } catch (err) {
       if (runtimeId !== this.runtimeId) return;
       this.devices.learn(maxl);
