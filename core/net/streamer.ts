@@ -23,8 +23,8 @@
  *  3. Capacity. Geometry on a device never exceeds its queue. When a segment's
  *     timing plus its braking geometry would not fit (tiny fast segments), that is a
  *     buffer conflict: reported, and the machine is brought to rest (the paper's
- *     "error condition and a systems halt"). Or, with bufferConflict 'slow', the
- *     runtime caps each segment's speed so that the conflict cannot arise.
+ *     "error condition and a systems halt"). The author does not slow such a job by
+ *     itself: the user lowers its speed or joins its tiny segments (the message says so).
  *
  * Edits to provisional segments (a cancel, a replace, a split) are followed on the
  * devices with REPLACE_TAIL and fresh geometry.
@@ -747,7 +747,7 @@ export class Streamer {
       message:
         `buffer conflict: segment ${next.id} (${next.length.toFixed(3)} mm at up to ${Math.sqrt(next.cruise2).toFixed(1)} mm/s) ` +
         `needs more segments ahead than a device's queue of ${capacity} holds, to stay on time and still be able to brake. ` +
-        `The machine is brought to rest. Use longer segments, a lower speed, or bufferConflict: 'slow'.`,
+        `The machine is brought to rest. Use longer segments or a lower speed.`,
     });
     this.holdAt = this.queue.brakeToRest() ?? this.holdAt;
   }
