@@ -9,12 +9,16 @@
 // and whole windows (MAXL_StepGenerator::planWindow, the assembly's path)
 // must equal their twin's K whole steps away, 2^30 units out, where the count
 // goes by the C walk (as the host's StepCount.WindowsMatchTheWalkingTwin).
+// timesR() (maxl/readers/step_times.h, AVR assembly) must equal
+// timesRPortable() for edge values and 40 000 pseudo-random cases (R below
+// 2^31 as planWindow makes it, every length of R, whole and frac).
 // Run in simavr by scripts/firmware-avr.sh; prints "COUNT OK <n>" or the
 // first mismatch.
 #include <MAXL.h>
 #include <avr/sleep.h>
 
 #include "maxl/readers/step_count.h"
+#include "maxl/readers/step_times.h"
 
 using namespace maxl_fw;
 
@@ -59,6 +63,23 @@ bool sameQuotient(uint32_t n, uint32_t d) {
   Serial.print(n);
   Serial.print(" d=");
   Serial.print(d);
+  Serial.print(" asm=");
+  Serial.print(a);
+  Serial.print(" C=");
+  Serial.println(p);
+  return false;
+}
+
+bool sameTimes(uint32_t whole, uint16_t frac, uint32_t r) {
+  r &= 0x7FFFFFFFUL;  // planWindow's clamp
+  uint32_t a = timesR(whole, frac, r), p = timesRPortable(whole, frac, r);
+  if (a == p) return true;
+  Serial.print("COUNT TIMES MISMATCH whole=");
+  Serial.print(whole);
+  Serial.print(" frac=");
+  Serial.print(frac);
+  Serial.print(" r=");
+  Serial.print(r);
   Serial.print(" asm=");
   Serial.print(a);
   Serial.print(" C=");
@@ -150,6 +171,13 @@ void setup() {
     uint32_t dividend = (i & 1) ? (w << 20) + d - 1 : next() >> (next() % 32);
     ok = sameQuotient(dividend, d);
   }
+  const uint32_t ts[] = {0, 1, 15, 16, 255, 0xFFFFUL, 0x10000UL, 0xFFFFFFUL, 0x7FFFFFFFUL, 0x80000000UL, 0xFFFFFFFFUL};
+  const uint16_t tf[] = {0, 1, 0x8000, 0xFFFF};
+  for (uint8_t i = 0; i < 11 && ok; i++)
+    for (uint8_t j = 0; j < 11 && ok; j++)
+      for (uint8_t f = 0; f < 4 && ok; f++, n++) ok = sameTimes(ts[i], tf[f], ts[j]);
+  for (uint32_t i = 0; i < 40000UL && ok; i++, n++)
+    ok = sameTimes(next() >> (next() % 32), (uint16_t)(next() >> (next() % 16)), next() >> (next() % 32));
   if (ok) ok = windowsMatchTheWalk(n);
   if (ok) {
     Serial.print("COUNT OK ");

@@ -2,6 +2,7 @@
 
 #include "maxl/motion/fixed_point.h"
 #include "maxl/readers/step_count.h"
+#include "maxl/readers/step_times.h"
 
 MAXL_StepGenerator::MAXL_StepGenerator(uint8_t stepPin, uint8_t dirPin, float stepsPerUnit, bool invertDirection)
     : begun_(false),
@@ -118,10 +119,109 @@ bool MAXL_StepGenerator::moveTo(int32_t units) {
 // a segment's end snapped to p1, a jump) are a burst at 0. Going down is the
 // mirror image, with the lower thresholds D_k = U_1 − k·s and "due when m < D".
 #if MAXL_STEP_TIMER
-namespace {
-__attribute__((noinline)) uint32_t timesR(uint32_t whole, uint16_t frac, uint32_t r) {
-  return ((whole * r) >> 4) + ((uint32_t)maxl_fw::mulhi16Cold((int32_t)r, frac) >> 4) + 2;
+#if defined(__AVR__) && !defined(MAXL_NO_ASM)
+// timesR (step_times.h). avr-gcc's ABI: whole in r25..r22 (a3..a0), frac in
+// r21:r20 (f1:f0), R in r19..r16 (b3..b0), the result in r25..r22. Uses the
+// call-used r26, r27, r30, r31, r0 and r1 (cleared at the end), and r2 as a
+// zero register (saved).
+//   A = whole·R mod 2^32 in r31:r30:r27:r26: the byte products a_i·b_j with
+//       i + j <= 3, each added at byte i + j (at byte 3 only its low byte).
+//   B = floor(R·frac/2^16) in r25:r24:r23:r22: the products b_i·f_j, bytes 1
+//       to 5 of the 48-bit product (byte 1, in r25 at first, only for its
+//       carry into byte 2).
+//   A/2^4 + B/2^4 (each a floor) = ((A & ~15) + (B & ~15))/2^4 on 33 bits:
+//       the add's carry goes in with the first rotate, then the cleared low
+//       nibbles rotate out zeros. Then + 2.
+__attribute__((naked, noinline)) uint32_t maxl_fw::timesR(uint32_t, uint16_t, uint32_t) {
+  __asm__ volatile(
+      "push r2            \n\t"
+      "clr  r2            \n\t"
+      "mul  r22, r16      \n\t"  // A: a0·b0 at byte 0
+      "movw r26, r0       \n\t"
+      "clr  r30           \n\t"
+      "clr  r31           \n\t"
+      "mul  r22, r17      \n\t"  // a0·b1 at 1
+      "add  r27, r0       \n\t"
+      "adc  r30, r1       \n\t"
+      "adc  r31, r2       \n\t"
+      "mul  r23, r16      \n\t"  // a1·b0 at 1
+      "add  r27, r0       \n\t"
+      "adc  r30, r1       \n\t"
+      "adc  r31, r2       \n\t"
+      "mul  r22, r18      \n\t"  // a0·b2 at 2
+      "add  r30, r0       \n\t"
+      "adc  r31, r1       \n\t"
+      "mul  r23, r17      \n\t"  // a1·b1 at 2
+      "add  r30, r0       \n\t"
+      "adc  r31, r1       \n\t"
+      "mul  r24, r16      \n\t"  // a2·b0 at 2
+      "add  r30, r0       \n\t"
+      "adc  r31, r1       \n\t"
+      "mul  r22, r19      \n\t"  // a0·b3, a1·b2, a2·b1, a3·b0 at 3 (low bytes)
+      "add  r31, r0       \n\t"
+      "mul  r23, r18      \n\t"
+      "add  r31, r0       \n\t"
+      "mul  r24, r17      \n\t"
+      "add  r31, r0       \n\t"
+      "mul  r25, r16      \n\t"
+      "add  r31, r0       \n\t"
+      "mul  r16, r20      \n\t"  // B: b0·f0 at 0 (byte 1 into r25)
+      "mov  r25, r1       \n\t"
+      "clr  r22           \n\t"
+      "clr  r23           \n\t"
+      "clr  r24           \n\t"
+      "mul  r16, r21      \n\t"  // b0·f1 at 1
+      "add  r25, r0       \n\t"
+      "adc  r22, r1       \n\t"
+      "adc  r23, r2       \n\t"
+      "mul  r17, r20      \n\t"  // b1·f0 at 1
+      "add  r25, r0       \n\t"
+      "adc  r22, r1       \n\t"
+      "adc  r23, r2       \n\t"
+      "clr  r25           \n\t"  // byte 1 done; r25 is byte 5 now
+      "mul  r17, r21      \n\t"  // b1·f1 at 2
+      "add  r22, r0       \n\t"
+      "adc  r23, r1       \n\t"
+      "adc  r24, r2       \n\t"
+      "mul  r18, r20      \n\t"  // b2·f0 at 2
+      "add  r22, r0       \n\t"
+      "adc  r23, r1       \n\t"
+      "adc  r24, r2       \n\t"
+      "mul  r18, r21      \n\t"  // b2·f1 at 3
+      "add  r23, r0       \n\t"
+      "adc  r24, r1       \n\t"
+      "adc  r25, r2       \n\t"
+      "mul  r19, r20      \n\t"  // b3·f0 at 3
+      "add  r23, r0       \n\t"
+      "adc  r24, r1       \n\t"
+      "adc  r25, r2       \n\t"
+      "mul  r19, r21      \n\t"  // b3·f1 at 4
+      "add  r24, r0       \n\t"
+      "adc  r25, r1       \n\t"
+      "andi r26, 0xF0     \n\t"  // (A & ~15) + (B & ~15), carry out in C
+      "andi r22, 0xF0     \n\t"
+      "add  r22, r26      \n\t"
+      "adc  r23, r27      \n\t"
+      "adc  r24, r30      \n\t"
+      "adc  r25, r31      \n\t"
+      "ldi  r26, 4        \n\t"  // (ldi and dec leave C alone)
+      "1:                 \n\t"
+      "ror  r25           \n\t"
+      "ror  r24           \n\t"
+      "ror  r23           \n\t"
+      "ror  r22           \n\t"
+      "dec  r26           \n\t"
+      "brne 1b            \n\t"
+      "subi r22, 0xFE     \n\t"  // + 2
+      "sbci r23, 0xFF     \n\t"
+      "sbci r24, 0xFF     \n\t"
+      "sbci r25, 0xFF     \n\t"
+      "clr  r1            \n\t"
+      "pop  r2            \n\t"
+      "ret                \n\t");
 }
+#endif
+namespace {
 __attribute__((noinline)) void burstRun(MAXL_StepWindow& out, uint8_t count, bool backward) {
   MAXL_StepWindow::Run& r = out.run[out.runs++];
   r.first = 0;
@@ -261,8 +361,8 @@ void MAXL_StepGenerator::planWindow(uint16_t w, int32_t p0, int32_t p1, int32_t 
   uint32_t r = maxl_fw::divideWindow(((uint32_t)w << 20) + dist - 1, dist);
   if (r > 0x7FFFFFFFul) r = 0x7FFFFFFFul;  // w = 2^11 and Δ = 1: one unit, one step at most
   MAXL_StepWindow::Run& run = out.run[out.runs++];
-  run.first = timesR(whole, frac, r);
-  run.interval = n > 1 ? timesR((uint32_t)sWhole_, sFrac_, r) : 0;
+  run.first = maxl_fw::timesR(whole, frac, r);
+  run.interval = n > 1 ? maxl_fw::timesR((uint32_t)sWhole_, sFrac_, r) : 0;
   run.count = n;
   run.backward = !forward;
 }
