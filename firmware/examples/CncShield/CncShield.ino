@@ -68,9 +68,17 @@ MAXL_TrackEvent spindleTrack("spindle", onSpindle);
 MAXL_TrackVelocity velocityTrack("velocity", onSpeed);
 
 void setup() {
+#if defined(__AVR__)
+  // D8 (enable, PB0) and D11 (spindle, PB3) outputs, low: the drivers on, the
+  // spindle off. Straight to port B, as writeDuty does: digitalWrite()'s
+  // timer lookup alone is ~100 bytes of flash.
+  DDRB |= _BV(0) | _BV(3);
+  PORTB &= (uint8_t)~(_BV(0) | _BV(3));
+#else
   pinMode(ENABLE_PIN, OUTPUT);
   digitalWrite(ENABLE_PIN, LOW);
   pinMode(SPINDLE_PIN, OUTPUT);
+#endif
   writeSpindle();
   maxl.begin(Serial);
 }

@@ -1,5 +1,7 @@
 #include "maxl/readers/step_generator.h"
 
+#include <stddef.h>
+
 #include "maxl/motion/fixed_point.h"
 #include "maxl/readers/step_count.h"
 #include "maxl/readers/step_times.h"
@@ -254,7 +256,13 @@ __attribute__((noinline)) void burstRun(MAXL_StepWindow& out, uint8_t count, boo
 // A window's count and its burst check go that way; the walk below is left
 // for the rest (a reference far away, a count past `max`), where speed matters
 // less than flash.
-uint8_t MAXL_StepGenerator::stepToward(int32_t units, uint8_t max, int8_t direction) {
+//
+// On the AVR, stepToward is a few instructions of assembly that first ask
+// whether a step is due at all (the ceilings' compare below), before any
+// register is saved: a window's burst check finds none due almost always
+// (keptLag), and the C count's register saves cost more than the count then.
+inline __attribute__((always_inline)) uint8_t MAXL_StepGenerator::countToward(int32_t units, uint8_t max,
+                                                                              int8_t direction) {
   if (maxl_fw::countJumpFits(units, upWhole_, sWhole_)) {
     uint32_t whole = (uint32_t)upWhole_;
     uint16_t frac = upFrac_;
@@ -270,6 +278,79 @@ uint8_t MAXL_StepGenerator::stepToward(int32_t units, uint8_t max, int8_t direct
   }
   return (uint8_t)walkToward(units, max, direction);
 }
+
+#if defined(__AVR__) && !defined(MAXL_NO_ASM)
+extern "C" __attribute__((used, noinline)) uint8_t maxl_stepTowardDue(MAXL_StepGenerator* generator, int32_t units,
+                                                                       uint8_t max, int8_t direction) {
+  return generator->countToward(units, max, direction);
+}
+
+// The generator in r25:r24 (kept in Z), units in r23..r20, max in r18, direction in
+// r16 (all left as they are for maxl_stepTowardDue). None due: return 0.
+//   up:   due when units >= ceil(U_1) = upWhole + (upFrac != 0)        (upCeil)
+//   down: due when units <  ceil(D_1) = upWhole − sWhole + (upFrac > sFrac) (downCeil)
+// Each ceiling is built in r27..r24 (the carry first: `cp r1, x` sets C when
+// x != 0, `cp sFrac, upFrac` when sFrac < upFrac; the loads leave C alone),
+// then one signed compare, as the C forms (walkToward's first test) make it.
+extern "C" __attribute__((naked, noinline)) uint8_t maxl_stepToward(MAXL_StepGenerator*, int32_t, uint8_t, int8_t) {
+  __asm__ volatile(
+      "movw r30, r24           \n\t"
+      "ldd  r24, Z+%[uf]       \n\t"
+      "ldd  r25, Z+%[uf]+1     \n\t"
+      "sbrc r16, 7             \n\t"
+      "rjmp 2f                 \n\t"
+      "or   r24, r25           \n\t"  // up: C = (upFrac != 0)
+      "cp   r1, r24            \n\t"
+      "rjmp 3f                 \n\t"
+      "2:                      \n\t"
+      "ldd  r0, Z+%[sf]        \n\t"  // down: C = (sFrac < upFrac)
+      "cp   r0, r24            \n\t"
+      "ldd  r0, Z+%[sf]+1      \n\t"
+      "cpc  r0, r25            \n\t"
+      "3:                      \n\t"
+      "ldd  r24, Z+%[uw]       \n\t"  // upWhole + C
+      "ldd  r25, Z+%[uw]+1     \n\t"
+      "ldd  r26, Z+%[uw]+2     \n\t"
+      "ldd  r27, Z+%[uw]+3     \n\t"
+      "adc  r24, r1            \n\t"
+      "adc  r25, r1            \n\t"
+      "adc  r26, r1            \n\t"
+      "adc  r27, r1            \n\t"
+      "sbrs r16, 7             \n\t"
+      "rjmp 4f                 \n\t"
+      "ldd  r0, Z+%[sw]        \n\t"  // down: − sWhole
+      "sub  r24, r0            \n\t"
+      "ldd  r0, Z+%[sw]+1      \n\t"
+      "sbc  r25, r0            \n\t"
+      "ldd  r0, Z+%[sw]+2      \n\t"
+      "sbc  r26, r0            \n\t"
+      "ldd  r0, Z+%[sw]+3      \n\t"
+      "sbc  r27, r0            \n\t"
+      "4:                      \n\t"
+      "cp   r20, r24           \n\t"  // units vs the ceiling, signed
+      "cpc  r21, r25           \n\t"
+      "cpc  r22, r26           \n\t"
+      "cpc  r23, r27           \n\t"
+      "movw r24, r30           \n\t"  // this again (movw leaves the flags)
+      "brlt 5f                 \n\t"
+      "sbrs r16, 7             \n\t"  // units >= ceiling: due going up
+      "rjmp maxl_stepTowardDue \n\t"
+      "rjmp 6f                 \n\t"
+      "5:                      \n\t"
+      "sbrc r16, 7             \n\t"  // units < ceiling: due going down
+      "rjmp maxl_stepTowardDue \n\t"
+      "6:                      \n\t"
+      "ldi  r24, 0             \n\t"
+      "ret                     \n\t"
+      :
+      : [uw] "n"(offsetof(MAXL_StepGenerator, upWhole_)), [uf] "n"(offsetof(MAXL_StepGenerator, upFrac_)),
+        [sw] "n"(offsetof(MAXL_StepGenerator, sWhole_)), [sf] "n"(offsetof(MAXL_StepGenerator, sFrac_)));
+}
+#else
+uint8_t MAXL_StepGenerator::stepToward(int32_t units, uint8_t max, int8_t direction) {
+  return countToward(units, max, direction);
+}
+#endif
 
 // stepToward's general way (out of line: the one-pass count above then needs
 // few registers saved), and reference()'s, with no step limit.
