@@ -334,11 +334,11 @@ extern "C" __attribute__((naked, noinline)) uint8_t maxl_stepToward(MAXL_StepGen
       "movw r24, r30           \n\t"  // this again (movw leaves the flags)
       "brlt 5f                 \n\t"
       "sbrs r16, 7             \n\t"  // units >= ceiling: due going up
-      "rjmp maxl_stepTowardDue \n\t"
+      "jmp  maxl_stepTowardDue \n\t"
       "rjmp 6f                 \n\t"
       "5:                      \n\t"
       "sbrc r16, 7             \n\t"  // units < ceiling: due going down
-      "rjmp maxl_stepTowardDue \n\t"
+      "jmp  maxl_stepTowardDue \n\t"
       "6:                      \n\t"
       "ldi  r24, 0             \n\t"
       "ret                     \n\t"
