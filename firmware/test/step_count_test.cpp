@@ -3,13 +3,16 @@
 // (each compared through its ceiling in whole units, as stepToward does), and
 // the next threshold exactly U ± k·s. On the host countJump is the portable
 // form; the AVR assembly is checked against the same portable form in simavr
-// (firmware/bench/StepCountCheck, run by scripts/firmware-avr.sh).
+// (firmware/bench/StepCountCheck, run by scripts/firmware-avr.sh); so is
+// timesR (readers/step_times.h), tested here for what its portable form means.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 
 #include "maxl/readers/step_count.h"
 #include "maxl/readers/step_generator.h"
+#include "maxl/readers/step_times.h"
+#include "maxl/motion/fixed_point.h"
 
 using namespace maxl_fw;
 
@@ -196,3 +199,36 @@ TEST(StepCount, WindowsMatchTheWalkingTwin) {
   EXPECT_GT(runs, windows / 2);  // most windows hold steps
 }
 #endif
+
+// timesR (readers/step_times.h): the time x·r in Q16 µs from R = r·2^20 and
+// x = whole + frac/2^16, never early: at least x·R/2^4 exactly (in rationals),
+// at most 2 + 2^-4 above it (the two floors cost under 1 each, the + 2 makes
+// them good); and equal to the form planWindow used before it was assembly
+// (mulhi16 of R as a signed number, R < 2^31). Where whole·R does not fit 32
+// bits (not where planWindow calls it) only the second property holds.
+TEST(StepTimes, NeverEarlyAtMostTwoLateAndAsBefore) {
+  uint64_t state = 88172645463325252ull;
+  auto next = [&state]() {
+    state ^= state << 13;
+    state ^= state >> 7;
+    state ^= state << 17;
+    return (uint32_t)(state >> 11);
+  };
+  int checked = 0;
+  for (int i = 0; i < 400000; i++) {
+    uint32_t r = (next() >> (next() % 32)) & 0x7FFFFFFFu;
+    uint32_t whole = next() >> (next() % 32);
+    uint16_t frac = (uint16_t)(next() >> (next() % 17));
+    uint32_t t = timesRPortable(whole, frac, r);
+    uint32_t before = ((whole * r) >> 4) + ((uint32_t)mulhi16((int32_t)r, frac) >> 4) + 2;
+    ASSERT_EQ(t, before) << "whole " << whole << " frac " << frac << " r " << r;
+    if ((uint64_t)whole * r >= (1ull << 32)) continue;
+    // exact x·R/2^4 in units of 2^-20: (whole·2^16 + frac)·R
+    const unsigned __int128 exact = ((unsigned __int128)whole * 65536u + frac) * r;  // /2^20 is x·R/2^4
+    const unsigned __int128 got = (unsigned __int128)t << 20;
+    ASSERT_GE(got, exact) << "early: whole " << whole << " frac " << frac << " r " << r;
+    ASSERT_LE(got - exact, ((unsigned __int128)2 << 20) + ((unsigned __int128)1 << 16)) << "late: whole " << whole;
+    checked++;
+  }
+  EXPECT_GT(checked, 100000);
+}

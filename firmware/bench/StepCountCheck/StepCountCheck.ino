@@ -9,12 +9,21 @@
 // and whole windows (MAXL_StepGenerator::planWindow, the assembly's path)
 // must equal their twin's K whole steps away, 2^30 units out, where the count
 // goes by the C walk (as the host's StepCount.WindowsMatchTheWalkingTwin).
+// timesR() (maxl/readers/step_times.h, AVR assembly) must equal
+// timesRPortable() for edge values and 40 000 pseudo-random cases (R below
+// 2^31 as planWindow makes it, every length of R, whole and frac).
+// MAXL_StepGenerator::stepToward (assembly that first asks whether a step is
+// due, maxl_stepToward) must give the count and leave the generator as the C
+// count alone does (maxl_stepTowardDue, which finds none due by itself), for
+// 30 000 pseudo-random generators and positions a few units either side of a
+// threshold's ceiling, both ways, near the origin and 2^30 units out.
 // Run in simavr by scripts/firmware-avr.sh; prints "COUNT OK <n>" or the
 // first mismatch.
 #include <MAXL.h>
 #include <avr/sleep.h>
 
 #include "maxl/readers/step_count.h"
+#include "maxl/readers/step_times.h"
 
 using namespace maxl_fw;
 
@@ -64,6 +73,60 @@ bool sameQuotient(uint32_t n, uint32_t d) {
   Serial.print(" C=");
   Serial.println(p);
   return false;
+}
+
+bool sameTimes(uint32_t whole, uint16_t frac, uint32_t r) {
+  r &= 0x7FFFFFFFUL;  // planWindow's clamp
+  uint32_t a = timesR(whole, frac, r), p = timesRPortable(whole, frac, r);
+  if (a == p) return true;
+  Serial.print("COUNT TIMES MISMATCH whole=");
+  Serial.print(whole);
+  Serial.print(" frac=");
+  Serial.print(frac);
+  Serial.print(" r=");
+  Serial.print(r);
+  Serial.print(" asm=");
+  Serial.print(a);
+  Serial.print(" C=");
+  Serial.println(p);
+  return false;
+}
+
+// stepToward's assembly against the C count on twin generators.
+bool dueMatches(uint32_t& n) {
+  for (uint16_t trial = 0; trial < 300; trial++) {
+    uint8_t k = (uint8_t)(next() % 14);
+    float stepsPerUnit = 65536.0f / (float)(((uint32_t)1 << k) + (next() % 7 == 0 ? next() % 1000 : 0));
+    MAXL_StepGenerator g(2, 5, stepsPerUnit);
+    int32_t p = (int32_t)(next() % 0x20000000UL) - 0x10000000L;
+    if (trial & 1) p += 0x40000000L;  // beyond countJump's domain: the walk
+    g.reference(p);
+    for (uint8_t i = 0; i < 100; i++, n++) {
+      int32_t span = (int32_t)1 << (next() % 16);
+      int32_t units = p + (int32_t)(next() % (uint32_t)(2 * span + 1)) - span;
+      uint8_t max = (uint8_t)(next() % 4 == 0 ? next() % 8 : 127);
+      int8_t direction = (next() & 1) ? 1 : -1;
+      MAXL_StepGenerator a = g, c = g;
+      uint8_t ka = maxl_stepToward(&a, units, max, direction);
+      uint8_t kc = maxl_stepTowardDue(&c, units, max, direction);
+      if (ka != kc || memcmp(&a, &c, sizeof a) != 0) {
+        Serial.print("COUNT DUE MISMATCH trial=");
+        Serial.print(trial);
+        Serial.print(" units=");
+        Serial.print(units);
+        Serial.print(" direction=");
+        Serial.print(direction);
+        Serial.print(" asm=");
+        Serial.print(ka);
+        Serial.print(" C=");
+        Serial.println(kc);
+        return false;
+      }
+      g = a;
+      p = units;
+    }
+  }
+  return true;
 }
 
 // Windows of the assembly's path against the walk's, on twin generators (see
@@ -150,6 +213,14 @@ void setup() {
     uint32_t dividend = (i & 1) ? (w << 20) + d - 1 : next() >> (next() % 32);
     ok = sameQuotient(dividend, d);
   }
+  const uint32_t ts[] = {0, 1, 15, 16, 255, 0xFFFFUL, 0x10000UL, 0xFFFFFFUL, 0x7FFFFFFFUL, 0x80000000UL, 0xFFFFFFFFUL};
+  const uint16_t tf[] = {0, 1, 0x8000, 0xFFFF};
+  for (uint8_t i = 0; i < 11 && ok; i++)
+    for (uint8_t j = 0; j < 11 && ok; j++)
+      for (uint8_t f = 0; f < 4 && ok; f++, n++) ok = sameTimes(ts[i], tf[f], ts[j]);
+  for (uint32_t i = 0; i < 40000UL && ok; i++, n++)
+    ok = sameTimes(next() >> (next() % 32), (uint16_t)(next() >> (next() % 16)), next() >> (next() % 32));
+  if (ok) ok = dueMatches(n);
   if (ok) ok = windowsMatchTheWalk(n);
   if (ok) {
     Serial.print("COUNT OK ");

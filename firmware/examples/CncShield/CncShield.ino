@@ -47,12 +47,14 @@ void writeDuty(uint8_t duty) {
 #endif
 }
 
-// power 0..1 = power per mm × speed / FULL_POWER_SPEED, as PWM
+// power 0..1 = power per mm × speed / FULL_POWER_SPEED, as PWM: the duty is
+// power·255, rounded, 0 below (or NaN) and 255 from full power on.
 void writeSpindle() {
-  float power = powerPerMm * speed / FULL_POWER_SPEED;
-  if (power < 0.0f) power = 0.0f;
-  if (power > 1.0f) power = 1.0f;
-  writeDuty((uint8_t)(power * 255.0f + 0.5f));
+  float duty = powerPerMm * speed * (255.0f / FULL_POWER_SPEED);
+  uint8_t d = 0;
+  if (duty >= 254.5f) d = 255;
+  else if (duty > 0.0f) d = (uint8_t)(duty + 0.5f);
+  writeDuty(d);
 }
 void onSpindle(float value) {
   powerPerMm = value;
@@ -66,9 +68,17 @@ MAXL_TrackEvent spindleTrack("spindle", onSpindle);
 MAXL_TrackVelocity velocityTrack("velocity", onSpeed);
 
 void setup() {
+#if defined(__AVR__)
+  // D8 (enable, PB0) and D11 (spindle, PB3) outputs, low: the drivers on, the
+  // spindle off. Straight to port B, as writeDuty does: digitalWrite()'s
+  // timer lookup alone is ~100 bytes of flash.
+  DDRB |= _BV(0) | _BV(3);
+  PORTB &= (uint8_t)~(_BV(0) | _BV(3));
+#else
   pinMode(ENABLE_PIN, OUTPUT);
   digitalWrite(ENABLE_PIN, LOW);
   pinMode(SPINDLE_PIN, OUTPUT);
+#endif
   writeSpindle();
   maxl.begin(Serial);
 }

@@ -1,7 +1,10 @@
 #include "maxl/readers/step_generator.h"
 
+#include <stddef.h>
+
 #include "maxl/motion/fixed_point.h"
 #include "maxl/readers/step_count.h"
+#include "maxl/readers/step_times.h"
 
 MAXL_StepGenerator::MAXL_StepGenerator(uint8_t stepPin, uint8_t dirPin, float stepsPerUnit, bool invertDirection)
     : begun_(false),
@@ -118,10 +121,109 @@ bool MAXL_StepGenerator::moveTo(int32_t units) {
 // a segment's end snapped to p1, a jump) are a burst at 0. Going down is the
 // mirror image, with the lower thresholds D_k = U_1 − k·s and "due when m < D".
 #if MAXL_STEP_TIMER
-namespace {
-__attribute__((noinline)) uint32_t timesR(uint32_t whole, uint16_t frac, uint32_t r) {
-  return ((whole * r) >> 4) + ((uint32_t)maxl_fw::mulhi16Cold((int32_t)r, frac) >> 4) + 2;
+#if defined(__AVR__) && !defined(MAXL_NO_ASM)
+// timesR (step_times.h). avr-gcc's ABI: whole in r25..r22 (a3..a0), frac in
+// r21:r20 (f1:f0), R in r19..r16 (b3..b0), the result in r25..r22. Uses the
+// call-used r26, r27, r30, r31, r0 and r1 (cleared at the end), and r2 as a
+// zero register (saved).
+//   A = whole·R mod 2^32 in r31:r30:r27:r26: the byte products a_i·b_j with
+//       i + j <= 3, each added at byte i + j (at byte 3 only its low byte).
+//   B = floor(R·frac/2^16) in r25:r24:r23:r22: the products b_i·f_j, bytes 1
+//       to 5 of the 48-bit product (byte 1, in r25 at first, only for its
+//       carry into byte 2).
+//   A/2^4 + B/2^4 (each a floor) = ((A & ~15) + (B & ~15))/2^4 on 33 bits:
+//       the add's carry goes in with the first rotate, then the cleared low
+//       nibbles rotate out zeros. Then + 2.
+__attribute__((naked, noinline)) uint32_t maxl_fw::timesR(uint32_t, uint16_t, uint32_t) {
+  __asm__ volatile(
+      "push r2            \n\t"
+      "clr  r2            \n\t"
+      "mul  r22, r16      \n\t"  // A: a0·b0 at byte 0
+      "movw r26, r0       \n\t"
+      "clr  r30           \n\t"
+      "clr  r31           \n\t"
+      "mul  r22, r17      \n\t"  // a0·b1 at 1
+      "add  r27, r0       \n\t"
+      "adc  r30, r1       \n\t"
+      "adc  r31, r2       \n\t"
+      "mul  r23, r16      \n\t"  // a1·b0 at 1
+      "add  r27, r0       \n\t"
+      "adc  r30, r1       \n\t"
+      "adc  r31, r2       \n\t"
+      "mul  r22, r18      \n\t"  // a0·b2 at 2
+      "add  r30, r0       \n\t"
+      "adc  r31, r1       \n\t"
+      "mul  r23, r17      \n\t"  // a1·b1 at 2
+      "add  r30, r0       \n\t"
+      "adc  r31, r1       \n\t"
+      "mul  r24, r16      \n\t"  // a2·b0 at 2
+      "add  r30, r0       \n\t"
+      "adc  r31, r1       \n\t"
+      "mul  r22, r19      \n\t"  // a0·b3, a1·b2, a2·b1, a3·b0 at 3 (low bytes)
+      "add  r31, r0       \n\t"
+      "mul  r23, r18      \n\t"
+      "add  r31, r0       \n\t"
+      "mul  r24, r17      \n\t"
+      "add  r31, r0       \n\t"
+      "mul  r25, r16      \n\t"
+      "add  r31, r0       \n\t"
+      "mul  r16, r20      \n\t"  // B: b0·f0 at 0 (byte 1 into r25)
+      "mov  r25, r1       \n\t"
+      "clr  r22           \n\t"
+      "clr  r23           \n\t"
+      "clr  r24           \n\t"
+      "mul  r16, r21      \n\t"  // b0·f1 at 1
+      "add  r25, r0       \n\t"
+      "adc  r22, r1       \n\t"
+      "adc  r23, r2       \n\t"
+      "mul  r17, r20      \n\t"  // b1·f0 at 1
+      "add  r25, r0       \n\t"
+      "adc  r22, r1       \n\t"
+      "adc  r23, r2       \n\t"
+      "clr  r25           \n\t"  // byte 1 done; r25 is byte 5 now
+      "mul  r17, r21      \n\t"  // b1·f1 at 2
+      "add  r22, r0       \n\t"
+      "adc  r23, r1       \n\t"
+      "adc  r24, r2       \n\t"
+      "mul  r18, r20      \n\t"  // b2·f0 at 2
+      "add  r22, r0       \n\t"
+      "adc  r23, r1       \n\t"
+      "adc  r24, r2       \n\t"
+      "mul  r18, r21      \n\t"  // b2·f1 at 3
+      "add  r23, r0       \n\t"
+      "adc  r24, r1       \n\t"
+      "adc  r25, r2       \n\t"
+      "mul  r19, r20      \n\t"  // b3·f0 at 3
+      "add  r23, r0       \n\t"
+      "adc  r24, r1       \n\t"
+      "adc  r25, r2       \n\t"
+      "mul  r19, r21      \n\t"  // b3·f1 at 4
+      "add  r24, r0       \n\t"
+      "adc  r25, r1       \n\t"
+      "andi r26, 0xF0     \n\t"  // (A & ~15) + (B & ~15), carry out in C
+      "andi r22, 0xF0     \n\t"
+      "add  r22, r26      \n\t"
+      "adc  r23, r27      \n\t"
+      "adc  r24, r30      \n\t"
+      "adc  r25, r31      \n\t"
+      "ldi  r26, 4        \n\t"  // (ldi and dec leave C alone)
+      "1:                 \n\t"
+      "ror  r25           \n\t"
+      "ror  r24           \n\t"
+      "ror  r23           \n\t"
+      "ror  r22           \n\t"
+      "dec  r26           \n\t"
+      "brne 1b            \n\t"
+      "subi r22, 0xFE     \n\t"  // + 2
+      "sbci r23, 0xFF     \n\t"
+      "sbci r24, 0xFF     \n\t"
+      "sbci r25, 0xFF     \n\t"
+      "clr  r1            \n\t"
+      "pop  r2            \n\t"
+      "ret                \n\t");
 }
+#endif
+namespace {
 __attribute__((noinline)) void burstRun(MAXL_StepWindow& out, uint8_t count, bool backward) {
   MAXL_StepWindow::Run& r = out.run[out.runs++];
   r.first = 0;
@@ -154,7 +256,13 @@ __attribute__((noinline)) void burstRun(MAXL_StepWindow& out, uint8_t count, boo
 // A window's count and its burst check go that way; the walk below is left
 // for the rest (a reference far away, a count past `max`), where speed matters
 // less than flash.
-uint8_t MAXL_StepGenerator::stepToward(int32_t units, uint8_t max, int8_t direction) {
+//
+// On the AVR, stepToward is a few instructions of assembly that first ask
+// whether a step is due at all (the ceilings' compare below), before any
+// register is saved: a window's burst check finds none due almost always
+// (keptLag), and the C count's register saves cost more than the count then.
+inline __attribute__((always_inline)) uint8_t MAXL_StepGenerator::countToward(int32_t units, uint8_t max,
+                                                                              int8_t direction) {
   if (maxl_fw::countJumpFits(units, upWhole_, sWhole_)) {
     uint32_t whole = (uint32_t)upWhole_;
     uint16_t frac = upFrac_;
@@ -170,6 +278,79 @@ uint8_t MAXL_StepGenerator::stepToward(int32_t units, uint8_t max, int8_t direct
   }
   return (uint8_t)walkToward(units, max, direction);
 }
+
+#if defined(__AVR__) && !defined(MAXL_NO_ASM)
+extern "C" __attribute__((used, noinline)) uint8_t maxl_stepTowardDue(MAXL_StepGenerator* generator, int32_t units,
+                                                                       uint8_t max, int8_t direction) {
+  return generator->countToward(units, max, direction);
+}
+
+// The generator in r25:r24 (kept in Z), units in r23..r20, max in r18, direction in
+// r16 (all left as they are for maxl_stepTowardDue). None due: return 0.
+//   up:   due when units >= ceil(U_1) = upWhole + (upFrac != 0)        (upCeil)
+//   down: due when units <  ceil(D_1) = upWhole − sWhole + (upFrac > sFrac) (downCeil)
+// Each ceiling is built in r27..r24 (the carry first: `cp r1, x` sets C when
+// x != 0, `cp sFrac, upFrac` when sFrac < upFrac; the loads leave C alone),
+// then one signed compare, as the C forms (walkToward's first test) make it.
+extern "C" __attribute__((naked, noinline)) uint8_t maxl_stepToward(MAXL_StepGenerator*, int32_t, uint8_t, int8_t) {
+  __asm__ volatile(
+      "movw r30, r24           \n\t"
+      "ldd  r24, Z+%[uf]       \n\t"
+      "ldd  r25, Z+%[uf]+1     \n\t"
+      "sbrc r16, 7             \n\t"
+      "rjmp 2f                 \n\t"
+      "or   r24, r25           \n\t"  // up: C = (upFrac != 0)
+      "cp   r1, r24            \n\t"
+      "rjmp 3f                 \n\t"
+      "2:                      \n\t"
+      "ldd  r0, Z+%[sf]        \n\t"  // down: C = (sFrac < upFrac)
+      "cp   r0, r24            \n\t"
+      "ldd  r0, Z+%[sf]+1      \n\t"
+      "cpc  r0, r25            \n\t"
+      "3:                      \n\t"
+      "ldd  r24, Z+%[uw]       \n\t"  // upWhole + C
+      "ldd  r25, Z+%[uw]+1     \n\t"
+      "ldd  r26, Z+%[uw]+2     \n\t"
+      "ldd  r27, Z+%[uw]+3     \n\t"
+      "adc  r24, r1            \n\t"
+      "adc  r25, r1            \n\t"
+      "adc  r26, r1            \n\t"
+      "adc  r27, r1            \n\t"
+      "sbrs r16, 7             \n\t"
+      "rjmp 4f                 \n\t"
+      "ldd  r0, Z+%[sw]        \n\t"  // down: − sWhole
+      "sub  r24, r0            \n\t"
+      "ldd  r0, Z+%[sw]+1      \n\t"
+      "sbc  r25, r0            \n\t"
+      "ldd  r0, Z+%[sw]+2      \n\t"
+      "sbc  r26, r0            \n\t"
+      "ldd  r0, Z+%[sw]+3      \n\t"
+      "sbc  r27, r0            \n\t"
+      "4:                      \n\t"
+      "cp   r20, r24           \n\t"  // units vs the ceiling, signed
+      "cpc  r21, r25           \n\t"
+      "cpc  r22, r26           \n\t"
+      "cpc  r23, r27           \n\t"
+      "movw r24, r30           \n\t"  // this again (movw leaves the flags)
+      "brlt 5f                 \n\t"
+      "sbrs r16, 7             \n\t"  // units >= ceiling: due going up
+      "jmp  maxl_stepTowardDue \n\t"
+      "rjmp 6f                 \n\t"
+      "5:                      \n\t"
+      "sbrc r16, 7             \n\t"  // units < ceiling: due going down
+      "jmp  maxl_stepTowardDue \n\t"
+      "6:                      \n\t"
+      "ldi  r24, 0             \n\t"
+      "ret                     \n\t"
+      :
+      : [uw] "n"(offsetof(MAXL_StepGenerator, upWhole_)), [uf] "n"(offsetof(MAXL_StepGenerator, upFrac_)),
+        [sw] "n"(offsetof(MAXL_StepGenerator, sWhole_)), [sf] "n"(offsetof(MAXL_StepGenerator, sFrac_)));
+}
+#else
+uint8_t MAXL_StepGenerator::stepToward(int32_t units, uint8_t max, int8_t direction) {
+  return countToward(units, max, direction);
+}
+#endif
 
 // stepToward's general way (out of line: the one-pass count above then needs
 // few registers saved), and reference()'s, with no step limit.
@@ -261,8 +442,8 @@ void MAXL_StepGenerator::planWindow(uint16_t w, int32_t p0, int32_t p1, int32_t 
   uint32_t r = maxl_fw::divideWindow(((uint32_t)w << 20) + dist - 1, dist);
   if (r > 0x7FFFFFFFul) r = 0x7FFFFFFFul;  // w = 2^11 and Δ = 1: one unit, one step at most
   MAXL_StepWindow::Run& run = out.run[out.runs++];
-  run.first = timesR(whole, frac, r);
-  run.interval = n > 1 ? timesR((uint32_t)sWhole_, sFrac_, r) : 0;
+  run.first = maxl_fw::timesR(whole, frac, r);
+  run.interval = n > 1 ? maxl_fw::timesR((uint32_t)sWhole_, sFrac_, r) : 0;
   run.count = n;
   run.backward = !forward;
 }

@@ -42,6 +42,16 @@ struct MAXL_StepWindow {
   uint8_t runs;
 };
 
+class MAXL_StepGenerator;
+#if defined(__AVR__) && !defined(MAXL_NO_ASM)
+// MAXL_StepGenerator::stepToward on the AVR (step_generator.cpp): assembly
+// that asks whether a step is due, then the count in C once one is
+// (maxl_stepTowardDue, entered from the assembly: a fixed name, the same
+// registers as the member).
+extern "C" uint8_t maxl_stepToward(MAXL_StepGenerator* generator, int32_t units, uint8_t max, int8_t direction);
+extern "C" uint8_t maxl_stepTowardDue(MAXL_StepGenerator* generator, int32_t units, uint8_t max, int8_t direction);
+#endif
+
 class MAXL_StepGenerator {
  public:
   MAXL_StepGenerator(uint8_t stepPin, uint8_t dirPin, float stepsPerUnit, bool invertDirection = false);
@@ -90,7 +100,14 @@ class MAXL_StepGenerator {
   // Next thresholds' ceilings (see the top of this file).
   int32_t upCeil() const { return (int32_t)((uint32_t)upWhole_ + (upFrac_ != 0)); }
   int32_t downCeil() const { return (int32_t)((uint32_t)upWhole_ - (uint32_t)sWhole_ + (upFrac_ > sFrac_)); }
+#if defined(__AVR__) && !defined(MAXL_NO_ASM)
+  uint8_t stepToward(int32_t units, uint8_t max, int8_t direction) { return maxl_stepToward(this, units, max, direction); }
+  friend uint8_t maxl_stepToward(MAXL_StepGenerator* generator, int32_t units, uint8_t max, int8_t direction);
+  friend uint8_t maxl_stepTowardDue(MAXL_StepGenerator* generator, int32_t units, uint8_t max, int8_t direction);
+#else
   uint8_t stepToward(int32_t units, uint8_t max, int8_t direction);
+#endif
+  uint8_t countToward(int32_t units, uint8_t max, int8_t direction);
   uint32_t walkToward(int32_t units, uint32_t max, int8_t direction);
   uint8_t stepsUpTo(int32_t units, uint8_t max) { return stepToward(units, max, 1); }
   uint8_t stepsDownTo(int32_t units, uint8_t max) { return stepToward(units, max, -1); }
