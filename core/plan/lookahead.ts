@@ -97,9 +97,12 @@ export interface BlockLimits {
 
 /**
  * Told, in path order, of each block whose plan became final: its offset from the
- * front block at that moment (0 = the front) and its entry and exit speeds², mm²/s².
+ * front block at that moment (0 = the front). Its entry and exit speeds² are
+ * finalEntry2(offset) and finalExit2(offset): only the offset, an integer, is
+ * passed, as a double argument to a call the engine does not inline is a number
+ * allocated on the heap, a million a second here.
  */
-export type FinalListener = (offset: number, entry2: number, exit2: number) => void;
+export type FinalListener = (offset: number) => void;
 
 /** Told of each unplanned block's provisional speeds (fillProvisional). */
 export type ProvisionalListener = (offset: number, entry2: number, exit2: number) => void;
@@ -406,7 +409,7 @@ export class LookaheadPlanner {
       }
       this.blocks[s * BLOCK_STRIDE + EXIT2] = exit2;
       this.plannedCount++;
-      this.onFinal?.(p - this.first, this.blocks[s * BLOCK_STRIDE + ENTRY2], exit2);
+      this.onFinal?.(p - this.first);
       p++;
     }
   }

@@ -26,6 +26,7 @@
  * the ring doubles when full.
  */
 import type { ResolvedEventSpec } from './events.ts';
+import type { LockedLine } from './history.ts';
 import { actuatorRate } from './moves.ts';
 import { Segment } from './segment.ts';
 import { ValidatedMove } from './validatedMove.ts';
@@ -49,8 +50,12 @@ export interface PlannerBlocks {
   finalExit2(offset: number): number;
 }
 
-/** The oldest segment's fields, as readFront() copies them into an object its caller reuses. */
-export interface PendingFront {
+/**
+ * The oldest segment's fields, as readFront() copies them into an object its caller
+ * reuses; the caller adds what locking it decides (LockedLine's start time, entry
+ * and exit speeds², actuator rates) before it records the segment (history.ts).
+ */
+export interface PendingFront extends LockedLine {
   /** Written in place: as many numbers as motion axes. */
   start: number[];
   end: number[];
@@ -59,9 +64,6 @@ export interface PendingFront {
   actuatorStart: number[];
   /** The move's actuators at its end (null only for a dwell, never held here). */
   actuatorEnd: number[] | null;
-  length: number;
-  accel: number;
-  cruise2: number;
 }
 
 /**

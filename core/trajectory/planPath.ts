@@ -82,8 +82,10 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
   // A final plan is reported by offset from the front, which is row `locked`; its row's
   // duration is timed at once, while the row's inputs are still in cache.
   let locked = 0;
-  const planner = new LookaheadPlanner(0, (offset, entry2, exit2) => {
+  const planner: LookaheadPlanner = new LookaheadPlanner(0, (offset) => {
     const row = locked + offset;
+    const entry2 = planner.finalEntry2(offset);
+    const exit2 = planner.finalExit2(offset);
     columns.entry2s[row] = entry2;
     columns.exit2s[row] = exit2;
     // (A dwell's duration is its own, written when it was appended.)
