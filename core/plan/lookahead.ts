@@ -133,10 +133,26 @@ export class LookaheadPlanner {
   private end = 0;
   /** Blocks [first, first + plannedCount) have a final entry and exit. */
   private plannedCount = 0;
+  /**
+   * The two numbers below, kept in a Float64Array rather than as fields: both are
+   * written for every block, and a profile of the planner bench found each such field
+   * write allocating a heap number (the engine had not kept the field unboxed).
+   */
+  private readonly scalars = new Float64Array(2);
   /** Squared speed at the front junction: 0 at rest, or the last locked block's exit. */
-  private frontEntry2 = 0;
+  private get frontEntry2(): number {
+    return this.scalars[0];
+  }
+  private set frontEntry2(v: number) {
+    this.scalars[0] = v;
+  }
   /** W at the end junction. */
-  private endWork = 0;
+  private get endWork(): number {
+    return this.scalars[1];
+  }
+  private set endWork(v: number) {
+    this.scalars[1] = v;
+  }
 
   // --- the suffix-minimum candidates: absolute junction indices and C values, entries [candHead, candTail) at slot & mask ---
   private cands = new Float64Array(INITIAL_CAPACITY * 2);

@@ -183,6 +183,23 @@ export class TrajectoryQueue extends TailEditing implements QueueView {
     return duration_s;
   }
 
+  /**
+   * executeFrontNow() for the front segments while their plan is final, at most
+   * `max` of them (a dry run taking a run: dryRun.ts), stopping at the first that is
+   * not final or when nothing is queued. Each one's duration is added, in path
+   * order, to `tally.duration_s` and counted in `tally.segments`: one call for the
+   * run, and no duration returned per segment (a number returned from a call the
+   * engine does not inline is allocated on the heap).
+   */
+  executeFinalRun(max: number, earliestStart_us: number, tally: { segments: number; duration_s: number }): void {
+    for (let n = 0; n < max && this.planner.isFinal(0); n++) {
+      const duration_s = this.executeFrontNow(earliestStart_us);
+      if (duration_s < 0) return;
+      tally.segments++;
+      tally.duration_s += duration_s;
+    }
+  }
+
   /** executeFrontNow() for a segment that must be an object: transmitted, then retired with all before it. */
   private executeObjectFront(earliestStart_us: number): number {
     const seg = this.transmitNext(earliestStart_us);
