@@ -119,6 +119,11 @@ export class Maxl {
   addSegmentToQueue(move: Move, options?: WaitOptions): Promise<MoveReceipt> {
     // (No default `= {}`: that would make an object per call, a million a second here.)
     const signal = options?.signal;
+    // Fast path: room now and nobody waiting, and a plain line, appended without a ValidatedMove.
+    if (this.pendingCount === 0 && !this.closed && !signal?.aborted && this.trajectory.hasRoom()) {
+      const receipt = this.trajectory.appendIfPlainLine(move);
+      if (receipt !== null) return Promise.resolve(receipt);
+    }
     let validated: ValidatedMove;
     try {
       if (this.closed) throw new MaxlError('QUEUE_CLOSED', 'this MAXL instance was closed');
@@ -127,7 +132,7 @@ export class Maxl {
     } catch (err) {
       return Promise.reject(err);
     }
-    // Fast path: room now and nobody waiting, so no extra turn of the event loop.
+    // Room now and nobody waiting, so no extra turn of the event loop.
     if (this.pendingCount === 0 && this.trajectory.hasRoom()) {
       try {
         return Promise.resolve(this.trajectory.appendValidated(validated));

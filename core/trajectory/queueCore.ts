@@ -191,6 +191,23 @@ export abstract class QueueCore {
     return receipt;
   }
 
+  /**
+   * Appends `move` now, as appendValidated(validate(move)) would (the same segment,
+   * ids, plan and receipt), if it is a plain line (moves.ts isPlainLine) that the
+   * columnar tail takes; returns null, changing nothing, for any other move, which
+   * the caller validates and appends. A single add's fast path (Maxl.addSegmentToQueue):
+   * no ValidatedMove is made, only the copy of the end that validateMove would make.
+   */
+  appendIfPlainLine(move: Move): MoveReceipt | null {
+    if (!this.columnar || this.listeners.length > 0 || !isPlainLine(this.config, move)) return null;
+    const moveId = this.nextMoveId;
+    const id = this.enqueueLine(move.endPosition.slice(), move.maxVelocity ?? Infinity, move.maxAcceleration ?? Infinity, NO_SPECS, NO_ACTUATORS, moveId);
+    this.nextMoveId++;
+    this.flushPlanned();
+    if (this.gate.waiting > 0) this.wakeWaiters();
+    return id === LINE_SKIPPED ? { moveId, segmentIds: [], skipped: true } : { moveId, segmentIds: [id], skipped: false };
+  }
+
   /** Validates and appends in one step, ignoring the capacity bound. */
   append(move: Move): MoveReceipt {
     return this.appendValidated(this.validate(move));
