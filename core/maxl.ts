@@ -10,7 +10,7 @@
  */
 import { resolveConfig } from './config/validate.ts';
 import type { MaxlConfig, ResolvedConfig } from './config/types.ts';
-import { abortable, abortedError, errorAt, MaxlError } from './errors.ts';
+import { abortable, abortedError, errorAt, isMoveError, MaxlError } from './errors.ts';
 import type { Move, ValidatedMove } from './trajectory/moves.ts';
 import { TrajectoryQueue, type MoveReceipt } from './trajectory/queue.ts';
 import { TrajectoryHistory } from './trajectory/history.ts';
@@ -63,11 +63,6 @@ export interface MaxlOptions {
 export interface WaitOptions {
   /** Aborting it rejects the wait with a MaxlError of code ABORTED, having changed nothing. */
   signal?: AbortSignal;
-}
-
-/** Whether `err` refuses a move's content (rather than the wait: ABORTED, QUEUE_CLOSED). */
-function isMoveError(err: MaxlError): boolean {
-  return err.code === 'MOVE_INVALID' || err.code === 'MOVE_DIMENSION' || err.code === 'SOFT_LIMIT';
 }
 
 /** The queue of each Maxl, for the core's own tests and benches (queueOf). */

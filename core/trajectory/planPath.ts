@@ -18,7 +18,7 @@
  */
 import { resolveLimits } from '../config/limits.ts';
 import type { LimitsConfig, ResolvedConfig } from '../config/types.ts';
-import { MaxlError } from '../errors.ts';
+import { MaxlError, ownMessage } from '../errors.ts';
 import { trapezoidDuration } from '../plan/phases.ts';
 import { LookaheadPlanner } from '../plan/lookahead.ts';
 import { ColumnarPlannedPath, PathColumns, type PlannedPath } from './plannedPath.ts';
@@ -203,7 +203,7 @@ function validatePathMove(config: ResolvedConfig, m: PathMove, from: readonly nu
     // The queue's words name `endPosition`; a path move's key is `end`.
     if (err instanceof MaxlError) {
       const field = (err.field ?? '').replace(/^endPosition/, 'end');
-      throw new MaxlError(err.code, err.message.split('endPosition').join('end'), `moves[${i}]${field ? `.${field}` : ''}`);
+      throw new MaxlError(err.code, ownMessage(err).split('endPosition').join('end'), `moves[${i}]${field ? `.${field}` : ''}`);
     }
     throw err;
   }
