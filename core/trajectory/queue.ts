@@ -187,9 +187,8 @@ export class TrajectoryQueue extends TailEditing implements QueueView {
    * executeFrontNow() for the front segments while their plan is final, at most
    * `max` of them (a dry run taking a run: dryRun.ts), stopping at the first that is
    * not final or when nothing is queued. Each one's duration is added, in path
-   * order, to `tally.duration_s` and counted in `tally.segments`: one call for the
-   * run, and no duration returned per segment (a number returned from a call the
-   * engine does not inline is allocated on the heap).
+   * order, to `tally.duration_s` and counted in `tally.segments`: one call from the
+   * dry run for the whole run, the loop and its checks here, next to the lock.
    */
   executeFinalRun(max: number, earliestStart_us: number, tally: { segments: number; duration_s: number }): void {
     for (let n = 0; n < max && this.planner.isFinal(0); n++) {
