@@ -5,7 +5,7 @@
  * the move waiting for room, and a pause is not mistaken for the end.
  */
 import { describe, expect, it } from 'vitest';
-import type { Move } from '../../core/index.ts';
+import { createMAXL, type Move } from '../../core/index.ts';
 import { blotPlotter } from '../../core/sim/presets/index.ts';
 import { startMachine, type Bench } from '../../core/system/harness.ts';
 import { JobRunner, type MoveJob } from './jobRunner.ts';
@@ -87,6 +87,16 @@ describe('JobRunner', () => {
     await runWhile(b, () => phase() === 'running');
     expect(phase()).toBe('done');
     expect(runner.progress()?.doneSegments).toBe(700);
+  });
+
+  it('a points job with a coordinate that is not a number is refused whole, before anything is queued', () => {
+    const maxl = createMAXL(blotPlotter().config, { initialPosition: [10, 10] });
+    const logs: string[] = [];
+    const runner = new JobRunner({ log: (_level, code, message) => logs.push(`${code} ${message}`), preview: () => {} });
+    runner.start({ name: 'points.csv', maxVelocity: 50, points: Float64Array.from([20, 20, 30, 30, 40, NaN, 50, 50]), axes: 2 }, maxl, [0, 0]);
+    expect(logs).toEqual(['JOB_INVALID “points.csv”: point 3 has a coordinate that is not a finite number (NaN); nothing was started.']);
+    expect(runner.progress()).toBeNull();
+    expect(maxl.queue.size).toBe(0);
   });
 
   // A bad move in a run (found by addSegmentsNow, index 40) and one past the queue's

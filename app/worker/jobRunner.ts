@@ -128,6 +128,11 @@ export class JobRunner {
       return;
     }
     const count = Math.floor(points.length / axes);
+    const bad = points.findIndex((v) => !Number.isFinite(v));
+    if (bad >= 0) {
+      this.host.log('error', 'JOB_INVALID', `“${request.name}”: point ${Math.floor(bad / axes) + 1} has a coordinate that is not a finite number (${points[bad]}); nothing was started.`);
+      return;
+    }
     const outside = firstOutside(points, axes, maxl.config.softMin, maxl.config.softMax);
     if (outside >= 0) {
       const p = Array.from(points.subarray(outside * axes, outside * axes + axes), (v) => v.toFixed(2)).join(', ');
@@ -145,7 +150,7 @@ export class JobRunner {
           for (let k = i; k < Math.min(count, i + POINTS_RUN); k++) moves.push({ endPosition: Array.from(points.subarray(k * axes, k * axes + axes)), maxVelocity });
           return { moves, at: 0 };
         },
-        describeMove: (i) => `point ${i + 1} of “${request.name}”`,
+        describeMove: (i) => `point ${i + 1}`,
         count,
         maxVelocity,
         planned_s: 0,
