@@ -38,13 +38,33 @@ export class MaxlError extends Error {
   }
 }
 
+/** The words of `err` without the field it names (MaxlError puts `field: ` before them). */
+export function ownMessage(err: MaxlError): string {
+  return err.field === undefined ? err.message : err.message.slice(err.field.length + 2);
+}
+
 /**
  * `err` as the error of one item of a batch: its field prefixed by `prefix`
  * (`moves[3]` and `endPosition` give `moves[3].endPosition`), same code and words.
  */
 export function errorAt(err: MaxlError, prefix: string): MaxlError {
-  const own = err.field === undefined ? err.message : err.message.slice(err.field.length + 2);
-  return new MaxlError(err.code, own, err.field === undefined ? prefix : `${prefix}.${err.field}`);
+  return new MaxlError(err.code, ownMessage(err), err.field === undefined ? prefix : `${prefix}.${err.field}`);
+}
+
+/** Whether `err` refuses a move's content (rather than a wait: ABORTED, QUEUE_CLOSED). */
+export function isMoveError(err: MaxlError): boolean {
+  return err.code === 'MOVE_INVALID' || err.code === 'MOVE_DIMENSION' || err.code === 'SOFT_LIMIT';
+}
+
+/**
+ * Which move of a batch `err` refuses, as its field names it (errorAt's `moves[i]…`,
+ * as addSegmentsNow, addSegmentsToQueue and planPath throw it), and the field within
+ * that move (`endPosition[1]`, `maxVelocity`; '' for the move itself); null when the
+ * field names no batch item.
+ */
+export function batchItemOf(err: MaxlError): { index: number; field: string } | null {
+  const m = /^moves\[(\d+)\]\.?(.*)$/.exec(err.field ?? '');
+  return m ? { index: Number(m[1]), field: m[2] } : null;
 }
 
 /** Shorthand for the most common case: a config field that is wrong. */

@@ -13,7 +13,7 @@ export {
   type PathSample,
   type PlanPathOptions,
 } from './trajectory/planPath.ts';
-export { MaxlError, type MaxlErrorCode } from './errors.ts';
+export { batchItemOf, isMoveError, MaxlError, ownMessage, type MaxlErrorCode } from './errors.ts';
 export { resolveConfig } from './config/validate.ts';
 export type {
   MaxlConfig,

@@ -10,7 +10,7 @@
  */
 import { resolveConfig } from './config/validate.ts';
 import type { MaxlConfig, ResolvedConfig } from './config/types.ts';
-import { abortable, abortedError, errorAt, MaxlError } from './errors.ts';
+import { abortable, abortedError, errorAt, isMoveError, MaxlError } from './errors.ts';
 import type { Move, ValidatedMove } from './trajectory/moves.ts';
 import { TrajectoryQueue, type MoveReceipt } from './trajectory/queue.ts';
 import { TrajectoryHistory } from './trajectory/history.ts';
@@ -65,11 +65,6 @@ export interface WaitOptions {
   signal?: AbortSignal;
 }
 
-/** Whether `err` refuses a move's content (rather than the wait: ABORTED, QUEUE_CLOSED). */
-function isMoveError(err: MaxlError): boolean {
-  return err.code === 'MOVE_INVALID' || err.code === 'MOVE_DIMENSION' || err.code === 'SOFT_LIMIT';
-}
-
 /** The queue of each Maxl, for the core's own tests and benches (queueOf). */
 const queues = new WeakMap<Maxl, TrajectoryQueue>();
 
@@ -119,6 +114,11 @@ export class Maxl {
   addSegmentToQueue(move: Move, options?: WaitOptions): Promise<MoveReceipt> {
     // (No default `= {}`: that would make an object per call, a million a second here.)
     const signal = options?.signal;
+    // Fast path: room now and nobody waiting, and a plain line, appended without a ValidatedMove.
+    if (this.pendingCount === 0 && !this.closed && !signal?.aborted && this.trajectory.hasRoom()) {
+      const receipt = this.trajectory.appendIfPlainLine(move);
+      if (receipt !== null) return Promise.resolve(receipt);
+    }
     let validated: ValidatedMove;
     try {
       if (this.closed) throw new MaxlError('QUEUE_CLOSED', 'this MAXL instance was closed');
@@ -127,7 +127,7 @@ export class Maxl {
     } catch (err) {
       return Promise.reject(err);
     }
-    // Fast path: room now and nobody waiting, so no extra turn of the event loop.
+    // Room now and nobody waiting, so no extra turn of the event loop.
     if (this.pendingCount === 0 && this.trajectory.hasRoom()) {
       try {
         return Promise.resolve(this.trajectory.appendValidated(validated));

@@ -6,7 +6,8 @@
  *   placed the same way, within the chord tolerance + 0.1 mm (Hausdorff);
  * - a G-code file with G2/G3 and words the importer does not read: each is listed
  *   with its line number, and the plot completes;
- * - a malformed SVG is refused, naming the line, and the file before it stays.
+ * - a malformed SVG is refused, naming the line, and the file before it stays;
+ * - a G-code move the planner refuses (an F too slow) is said with its line, not plotted.
  */
 import { readFileSync } from 'node:fs';
 import type { Page } from '@playwright/test';
@@ -124,4 +125,20 @@ test('a malformed SVG is refused with its line, and the file before it stays', a
   await page.getByTestId('file-offer-fit').click();
   await expect(page.getByTestId('file-too-large')).toHaveCount(0);
   await expect(page.getByTestId('file-plot')).toBeEnabled();
+});
+
+test('a G-code move the planner refuses is said with the line of the file, and not plotted', async ({ page }) => {
+  await useBlot(page);
+  await page.getByTestId('tab-plot-files').click();
+  // F0.05 is mm/min: 0.00083 mm/s, below the slowest speed the planner takes (0.001 mm/s).
+  await page.getByTestId('plot-file-input').setInputFiles({
+    name: 'slow.gcode',
+    mimeType: 'text/plain',
+    buffer: Buffer.from('M3\nG1 X10 Y10 F600\nG1 X20 F0.05\nG1 Y20\nM5\n'),
+  });
+  const error = page.getByTestId('file-error');
+  await expect(error).toContainText('“slow.gcode” cannot be plotted: line 3 (move');
+  await expect(error).toContainText('maxVelocity: must be at least 0.001 mm/s');
+  await expect(error).toHaveAttribute('data-line', '3');
+  await expect(page.getByTestId('file-plot')).toBeDisabled();
 });

@@ -5,10 +5,10 @@
  * the move waiting for room, and a pause is not mistaken for the end.
  */
 import { describe, expect, it } from 'vitest';
-import type { Move } from '../../core/index.ts';
+import { createMAXL, type Move } from '../../core/index.ts';
 import { blotPlotter } from '../../core/sim/presets/index.ts';
 import { startMachine, type Bench } from '../../core/system/harness.ts';
-import { JobRunner } from './jobRunner.ts';
+import { JobRunner, type MoveJob } from './jobRunner.ts';
 import type { JobPhase } from './protocol.ts';
 
 /** n moves of 1 mm, back and forth along a row in the middle of the bed: more than the queue holds. */
@@ -16,7 +16,7 @@ function zigzag(n: number): Move[] {
   return Array.from({ length: n }, (_, i) => ({ endPosition: [40 + (i % 2), 40 + Math.floor(i / 2) * 0.01], maxVelocity: 60 }));
 }
 
-async function setup(moves: number) {
+async function setup(moves: number, job?: Partial<MoveJob>) {
   const b = await startMachine(blotPlotter());
   const logs: string[] = [];
   const runner = new JobRunner({ log: (_level, code, message) => logs.push(`${code} ${message}`), preview: () => {} });
@@ -24,7 +24,7 @@ async function setup(moves: number) {
   b.maxl.queue.subscribe((e) => {
     if (e.type === 'historical') for (const s of e.segments) runner.onHistorical(s);
   });
-  expect(runner.startMoves({ name: 'zigzag', moves: zigzag(moves) }, b.maxl)).toBe(true);
+  expect(runner.startMoves({ name: 'zigzag', moves: zigzag(moves), ...job }, b.maxl)).toBe(true);
   const phase = () => runner.progress()?.phase as JobPhase;
   return { b, runner, logs, phase };
 }
@@ -87,5 +87,35 @@ describe('JobRunner', () => {
     await runWhile(b, () => phase() === 'running');
     expect(phase()).toBe('done');
     expect(runner.progress()?.doneSegments).toBe(700);
+  });
+
+  it('a points job with a coordinate that is not a number is refused whole, before anything is queued', () => {
+    const maxl = createMAXL(blotPlotter().config, { initialPosition: [10, 10] });
+    const logs: string[] = [];
+    const runner = new JobRunner({ log: (_level, code, message) => logs.push(`${code} ${message}`), preview: () => {} });
+    runner.start({ name: 'points.csv', maxVelocity: 50, points: Float64Array.from([20, 20, 30, 30, 40, NaN, 50, 50]), axes: 2 }, maxl, [0, 0]);
+    expect(logs).toEqual(['JOB_INVALID “points.csv”: point 3 has a coordinate that is not a finite number (NaN); nothing was started.']);
+    expect(runner.progress()).toBeNull();
+    expect(maxl.queue.size).toBe(0);
+  });
+
+  // A bad move in a run (found by addSegmentsNow, index 40) and one past the queue's
+  // capacity (found after waits for room, index 900): either way the job stops there,
+  // every move before it queued and run, and the log names the job's own move and
+  // where the tool says it comes from (here a made-up file line: move i is line 2i + 5).
+  it.each([40, 900])('a bad move (index %i) stops the job with the job’s own words for it', async (bad) => {
+    const moves = zigzag(1200);
+    moves[bad] = { ...moves[bad], maxVelocity: 1e-4 };
+    const { b, runner, logs, phase } = await setup(0, { name: 'zigzag.gcode', moves, describeMove: (i) => `line ${2 * i + 5} of zigzag.gcode` });
+    await runWhile(b, () => phase() === 'running');
+    expect(phase()).toBe('failed');
+    expect(runner.fed).toBe(bad);
+    expect(logs.at(-1)).toBe(
+      `MOVE_INVALID “zigzag.gcode” stopped: line ${2 * bad + 5} of zigzag.gcode (move ${bad + 1} of the job): maxVelocity: must be at least 0.001 mm/s, got 0.0001`,
+    );
+    // Every move before it runs, and nothing of it or after it (progress counts moves by id from the job's first).
+    await runWhile(b, () => b.maxl.queue.transmittedEnd_us > b.scheduler.now() || b.maxl.queue.untransmittedCount > 0);
+    expect(runner.progress()?.doneSegments).toBe(bad);
+    expect(b.maxl.queue.untransmittedCount).toBe(0);
   });
 });

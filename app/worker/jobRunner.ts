@@ -3,13 +3,18 @@
  * its whole path, feeds its moves into the bounded queue as room frees up, and
  * follows its progress from the segments that finish.
  *
- * Each run has an AbortController: the feed awaits each addSegmentToQueue (which
- * waits for room when the queue is full) and then whenIdle, both with its signal.
- * A cancel, a STOP or a failure aborts it first, so a move still waiting for room
- * is dropped, never queued behind the stop; no timer polls for either.
+ * The feed hands the queue runs of moves with the batch API (maxl.addSegmentsNow:
+ * as many as fit, synchronously, no promise per move), and awaits addSegmentToQueue
+ * for the move that finds no room (it waits until there is), then whenIdle. Each run
+ * has an AbortController whose signal both waits take: a cancel, a STOP or a failure
+ * aborts it first, so a move still waiting for room is dropped, never queued behind
+ * the stop; no timer polls for either. A move the core refuses stops the job with
+ * the job's own words for it: which move, and where it comes from in the user's
+ * file when the tool said (MoveJob.describeMove, jobMoveError.ts).
  */
-import { isDwell, MaxlError, type Maxl, type Move, type SegmentView } from '../../core/index.ts';
+import { batchItemOf, isDwell, isMoveError, MaxlError, type Maxl, type Move, type SegmentView } from '../../core/index.ts';
 import { errorWords } from './errorWords.ts';
+import { jobMoveError } from './jobMoveError.ts';
 import { patternPoints } from './jobPatterns.ts';
 import type { JobPhase, JobProgress, JobRequest, LogLevel } from './protocol.ts';
 import { yieldToEvents } from './yieldToEvents.ts';
@@ -29,13 +34,23 @@ export interface MoveJob {
   moves: readonly Move[];
   /** s, the plan's duration (planPath), for the ETA; else the ETA follows the speed so far. */
   planned_s?: number;
+  /**
+   * Where moves[index] comes from, in the user's words (`line 12 of plot.gcode`), for
+   * the error if the core refuses it; absent when the tool cannot say.
+   */
+  describeMove?: (index: number) => string | null;
 }
 
 interface Run {
   name: string;
   maxl: Maxl;
-  /** The i-th move to hand to the queue. */
-  moveAt: (i: number) => Move;
+  /**
+   * The job's moves from the i-th on, as an array and the index of move i in it:
+   * the job's own array (a tool's job), or a run of moves made for it (a points job).
+   */
+  movesFrom: (i: number) => { moves: readonly Move[]; at: number };
+  /** Where the i-th move comes from in the user's words, or null. */
+  describeMove: (i: number) => string | null;
   count: number;
   /** mm/s: the ETA's rate until 0.2 s of motion have run. */
   maxVelocity: number;
@@ -60,6 +75,8 @@ interface Run {
 
 /** Feed at most this long (ms) before letting commands in. */
 const FEED_SLICE_MS = 4;
+/** Moves made at a time for a points job (its moves are made as they are fed). */
+const POINTS_RUN = 256;
 
 export class JobRunner {
   private run: Run | null = null;
@@ -111,6 +128,11 @@ export class JobRunner {
       return;
     }
     const count = Math.floor(points.length / axes);
+    const bad = points.findIndex((v) => !Number.isFinite(v));
+    if (bad >= 0) {
+      this.host.log('error', 'JOB_INVALID', `“${request.name}”: point ${Math.floor(bad / axes) + 1} has a coordinate that is not a finite number (${points[bad]}); nothing was started.`);
+      return;
+    }
     const outside = firstOutside(points, axes, maxl.config.softMin, maxl.config.softMax);
     if (outside >= 0) {
       const p = Array.from(points.subarray(outside * axes, outside * axes + axes), (v) => v.toFixed(2)).join(', ');
@@ -123,7 +145,12 @@ export class JobRunner {
       {
         name: request.name,
         maxl,
-        moveAt: (i) => ({ endPosition: Array.from(points.subarray(i * axes, i * axes + axes)), maxVelocity }),
+        movesFrom: (i) => {
+          const moves: Move[] = [];
+          for (let k = i; k < Math.min(count, i + POINTS_RUN); k++) moves.push({ endPosition: Array.from(points.subarray(k * axes, k * axes + axes)), maxVelocity });
+          return { moves, at: 0 };
+        },
+        describeMove: (i) => `point ${i + 1}`,
         count,
         maxVelocity,
         planned_s: 0,
@@ -163,7 +190,8 @@ export class JobRunner {
       {
         name: job.name,
         maxl,
-        moveAt: (i) => job.moves[i],
+        movesFrom: (i) => ({ moves: job.moves, at: i }),
+        describeMove: (i) => job.describeMove?.(i) ?? null,
         count: job.moves.length,
         maxVelocity: fastest || Infinity,
         planned_s: job.planned_s ?? 0,
@@ -176,7 +204,7 @@ export class JobRunner {
   }
 
   private begin(
-    r: Pick<Run, 'name' | 'maxl' | 'moveAt' | 'count' | 'maxVelocity' | 'planned_s' | 'totalLength'>,
+    r: Pick<Run, 'name' | 'maxl' | 'movesFrom' | 'describeMove' | 'count' | 'maxVelocity' | 'planned_s' | 'totalLength'>,
     preview: Float32Array,
     summary: string,
   ): void {
@@ -302,19 +330,36 @@ export class JobRunner {
   }
 
   /**
-   * Feeds the moves in order, each awaited (a full queue makes it wait for room),
-   * then waits for the machine to finish them. A stop aborts both waits.
+   * Feeds the moves in order, then waits for the machine to finish them. Each step
+   * awaits one move (the first, whose receipt gives the job's first move id, or one
+   * that finds the queue full and waits for room), then appends the moves that fit
+   * now in one synchronous run (addSegmentsNow). A stop aborts both waits.
    */
   private async feed(r: Run): Promise<void> {
     const { maxl } = r;
     const { signal } = r.abort;
     let sliceStart = performance.now();
     // From the first move not fed yet (0, or after a resume).
-    for (let i = r.fed; i < r.count; i++) {
-      const receipt = await maxl.addSegmentToQueue(r.moveAt(i), { signal });
-      r.fed = i + 1;
+    while (r.fed < r.count) {
+      const i = r.fed;
+      const { moves, at } = r.movesFrom(i);
+      let receipt;
+      try {
+        receipt = await maxl.addSegmentToQueue(moves[at], { signal });
+      } catch (err) {
+        throw this.inJobWords(r, err, i, at);
+      }
       if (i === 0) r.firstMoveId = receipt.moveId;
-      // Moves that find room are queued without a turn of the event loop: let commands in now and then.
+      r.fed = i + 1;
+      // A run moves[at + 1 …] as far as there is room; it stops (what fits is queued) at a bad move.
+      try {
+        r.fed = i + maxl.addSegmentsNow(moves, at + 1) - at;
+      } catch (err) {
+        const item = err instanceof MaxlError ? batchItemOf(err) : null;
+        if (item) r.fed = i + item.index - at;
+        throw this.inJobWords(r, err, i, at);
+      }
+      // Runs are queued without a turn of the event loop: let commands in now and then.
       if (performance.now() - sliceStart > FEED_SLICE_MS) {
         await yieldToEvents();
         sliceStart = performance.now();
@@ -343,6 +388,18 @@ export class JobRunner {
       r.wake = null;
       if (signal.aborted) return;
     }
+  }
+
+  /**
+   * A move's error (from the awaited add of the job's move i, which is moves[at], or
+   * from a run after it, whose error names its index in `moves`) in the job's words;
+   * any other error as it is.
+   */
+  private inJobWords(r: Run, err: unknown, i: number, at: number): unknown {
+    if (!(err instanceof MaxlError) || !isMoveError(err)) return err;
+    const item = batchItemOf(err);
+    const index = item ? i + item.index - at : i;
+    return jobMoveError(err, index, r.describeMove(index));
   }
 
   /** No more moves for this run: the waits for room and for the end give up. */

@@ -97,9 +97,12 @@ export interface BlockLimits {
 
 /**
  * Told, in path order, of each block whose plan became final: its offset from the
- * front block at that moment (0 = the front) and its entry and exit speeds², mm²/s².
+ * front block at that moment (0 = the front). Its entry and exit speeds² are
+ * finalEntry2(offset) and finalExit2(offset): only the offset, an integer, is
+ * passed, as a double argument to a call the engine does not inline is a number
+ * allocated on the heap, a million a second here.
  */
-export type FinalListener = (offset: number, entry2: number, exit2: number) => void;
+export type FinalListener = (offset: number) => void;
 
 /** Told of each unplanned block's provisional speeds (fillProvisional). */
 export type ProvisionalListener = (offset: number, entry2: number, exit2: number) => void;
@@ -130,10 +133,26 @@ export class LookaheadPlanner {
   private end = 0;
   /** Blocks [first, first + plannedCount) have a final entry and exit. */
   private plannedCount = 0;
+  /**
+   * The two numbers below, kept in a Float64Array rather than as fields: both are
+   * written for every block, and a profile of the planner bench found each such field
+   * write allocating a heap number (the engine had not kept the field unboxed).
+   */
+  private readonly scalars = new Float64Array(2);
   /** Squared speed at the front junction: 0 at rest, or the last locked block's exit. */
-  private frontEntry2 = 0;
+  private get frontEntry2(): number {
+    return this.scalars[0];
+  }
+  private set frontEntry2(v: number) {
+    this.scalars[0] = v;
+  }
   /** W at the end junction. */
-  private endWork = 0;
+  private get endWork(): number {
+    return this.scalars[1];
+  }
+  private set endWork(v: number) {
+    this.scalars[1] = v;
+  }
 
   // --- the suffix-minimum candidates: absolute junction indices and C values, entries [candHead, candTail) at slot & mask ---
   private cands = new Float64Array(INITIAL_CAPACITY * 2);
@@ -406,7 +425,7 @@ export class LookaheadPlanner {
       }
       this.blocks[s * BLOCK_STRIDE + EXIT2] = exit2;
       this.plannedCount++;
-      this.onFinal?.(p - this.first, this.blocks[s * BLOCK_STRIDE + ENTRY2], exit2);
+      this.onFinal?.(p - this.first);
       p++;
     }
   }

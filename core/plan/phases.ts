@@ -127,6 +127,42 @@ export function trapezoidDuration(length: number, entry2: number, exit2: number,
  * there are (1 to 3): for planners that keep timings in columns, allocating nothing.
  */
 export function writeTrapezoid(out: Float64Array, o: number, length: number, entry2: number, exit2: number, cruise2: number, accel: number): number {
+  const p = scratchInputs;
+  p.length = length;
+  p.entry2 = entry2;
+  p.exit2 = exit2;
+  p.cruise2 = cruise2;
+  p.accel = accel;
+  return writeTrapezoidOf(out, o, p);
+}
+
+/** A line's trapezoid inputs (trapezoidTiming's arguments) as the fields of one object. */
+export interface TrapezoidInputs {
+  /** mm */
+  length: number;
+  /** Entry, exit and cruise speeds², mm²/s². */
+  entry2: number;
+  exit2: number;
+  cruise2: number;
+  /** mm/s² */
+  accel: number;
+}
+
+/** writeTrapezoid's reused inputs. */
+const scratchInputs: TrapezoidInputs = { length: 0.5, entry2: 0.5, exit2: 0.5, cruise2: 0.5, accel: 0.5 };
+
+/**
+ * writeTrapezoid with its inputs read from an object the caller reuses, for the
+ * queue's executor, which times a million lines a second: a number passed as an
+ * argument to a call the engine does not inline is allocated on the heap, one read
+ * from a field is not. The same arithmetic, so the same phases to the last bit.
+ */
+export function writeTrapezoidOf(out: Float64Array, o: number, p: TrapezoidInputs): number {
+  const length = p.length;
+  const entry2 = p.entry2;
+  const exit2 = p.exit2;
+  const cruise2 = p.cruise2;
+  const accel = p.accel;
   const ve = Math.sqrt(entry2);
   const vx = Math.sqrt(exit2);
   let vp2 = Math.min(cruise2, (2 * accel * length + entry2 + exit2) / 2);

@@ -54,7 +54,13 @@ export class DryRun {
     if (q.hasRoom()) return;
     while (!q.hasRoom() && this.take());
     const keep = q.capacity - chunk;
-    while (q.untransmittedCount > keep && q.frontIsFinal && this.take());
+    const more = q.untransmittedCount - keep;
+    if (more <= 0) return;
+    if (this.onSegment) {
+      for (let n = 0; n < more && q.frontIsFinal && this.take(); n++);
+    } else {
+      q.executeFinalRun(more, 0, this);
+    }
   }
 
   /** The path is complete: plans it to rest and takes every queued segment. */

@@ -11,7 +11,7 @@
  * with A motion axes, B actuator axes and E event channels. Event changes inside a
  * segment (rare: only where a move sets channels) are kept beside it, by record.
  */
-import { PHASE_STRIDE, writeTrapezoid, type Timing } from '../plan/phases.ts';
+import { PHASE_STRIDE, writeTrapezoidOf, type Timing, type TrapezoidInputs } from '../plan/phases.ts';
 import type { EventTrack } from './events.ts';
 import type { Segment } from './segment.ts';
 import { sampleTimeline, segmentIndexAt, type TimedSegment, type TrajectorySample } from './tracks.ts';
@@ -28,6 +28,19 @@ export interface HistoryRecordFields {
   actuatorStart: readonly number[];
   actuatorRate: readonly number[];
   eventsAtStart: readonly number[] | null;
+}
+
+/**
+ * A line segment as an executor locks it without making it an object (the queue's
+ * columnar front): its trapezoid's inputs, its start time (author µs) and its
+ * geometry, as fields of an object the executor reuses.
+ */
+export interface LockedLine extends TrapezoidInputs {
+  startTime_us: number;
+  start: ArrayLike<number>;
+  unit: ArrayLike<number>;
+  actuatorStart: readonly number[];
+  actuatorRate: readonly number[];
 }
 
 export interface HistoricalSegment extends TimedSegment {
@@ -133,29 +146,18 @@ export class TrajectoryHistory {
 
   /**
    * Records a transmitted line segment timed by the trapezoid of plan/phases.ts, its
-   * phases written by writeTrapezoid straight into the ring (a dry run locks a
-   * million segments a second: no copy through a buffer), and returns its duration
-   * (s) as timingDuration() gives it: the last phase's start plus its length.
+   * phases written by writeTrapezoidOf straight into the ring (a dry run locks a
+   * million segments a second: no copy through a buffer, and its numbers read from
+   * the fields of `line`, not passed one by one), and returns its duration (s) as
+   * timingDuration() gives it: the last phase's start plus its length.
    */
-  pushTrapezoid(
-    startTime_us: number,
-    length: number,
-    entry2: number,
-    exit2: number,
-    cruise2: number,
-    accel: number,
-    start: ArrayLike<number>,
-    unit: ArrayLike<number>,
-    actuatorStart: readonly number[],
-    actuatorRate: readonly number[],
-    eventsAtStart: readonly number[] | null,
-  ): number {
+  pushLine(line: LockedLine, eventsAtStart: readonly number[] | null): number {
     const o = this.nextRecord(null);
     const d = this.data;
-    const n = writeTrapezoid(d, o + HEADER, length, entry2, exit2, cruise2, accel) * PHASE_STRIDE;
+    const n = writeTrapezoidOf(d, o + HEADER, line) * PHASE_STRIDE;
     const last = o + HEADER + n - PHASE_STRIDE;
     const duration_s = d[last] + d[last + 1];
-    this.writeFields(o, startTime_us, duration_s, length, n, start, unit, actuatorStart, actuatorRate, eventsAtStart);
+    this.writeFields(o, line.startTime_us, duration_s, line.length, n, line.start, line.unit, line.actuatorStart, line.actuatorRate, eventsAtStart);
     return duration_s;
   }
 

@@ -3,7 +3,8 @@
  * in for: two machines get the same random operations, one with a queue listener
  * (which keeps every segment an object, as before the columnar store) and one with
  * none (columnar wherever it can be). Appends, dwells, zero-length moves, moves that
- * set events, speed and acceleration caps, dry-run locks, reads of the queue (which
+ * set events, speed and acceleration caps, single adds through the fast path, dry-run
+ * locks (one at a time and in runs), reads of the queue (which
  * turn the columnar tail into objects mid-way), replaces and cancels must give the
  * same segments, the same receipts and errors, and the same as-planned history, to
  * the bit.
@@ -17,11 +18,11 @@ import { historyOf, machine } from '../testing/maxlHistory.ts';
 import type { Segment } from './segment.ts';
 
 type Op =
-  | { kind: 'line'; to: [number, number]; maxVelocity: number | null; maxAcceleration: number | null; pen: number | null }
+  | { kind: 'line'; to: [number, number]; maxVelocity: number | null; maxAcceleration: number | null; pen: number | null; fast: boolean }
   | { kind: 'dwell'; s: number }
   | { kind: 'again' }
   | { kind: 'take'; n: number }
-  | { kind: 'drain' }
+  | { kind: 'drain'; chunk: number }
   | { kind: 'read' }
   | { kind: 'replace'; k: number; to: [number, number] }
   | { kind: 'cancel'; k: number };
@@ -34,11 +35,13 @@ const opArb: fc.Arbitrary<Op> = fc.oneof(
     maxVelocity: fc.option(fc.double({ min: 1, max: 400, noNaN: true })),
     maxAcceleration: fc.option(fc.double({ min: 100, max: 5000, noNaN: true })),
     pen: fc.option(fc.constantFrom(0, 1), { freq: 6 }),
+    // Through a single add's fast path (appendIfPlainLine: a plain line, nobody listening) where it applies.
+    fast: fc.boolean(),
   }) },
   { weight: 1, arbitrary: fc.record({ kind: fc.constant('dwell' as const), s: fc.double({ min: 0, max: 0.05, noNaN: true }) }) },
   { weight: 1, arbitrary: fc.record({ kind: fc.constant('again' as const) }) },
   { weight: 4, arbitrary: fc.record({ kind: fc.constant('take' as const), n: fc.integer({ min: 1, max: 6 }) }) },
-  { weight: 2, arbitrary: fc.record({ kind: fc.constant('drain' as const) }) },
+  { weight: 2, arbitrary: fc.record({ kind: fc.constant('drain' as const), chunk: fc.constantFrom(1, 2, 4) }) },
   { weight: 1, arbitrary: fc.record({ kind: fc.constant('read' as const) }) },
   { weight: 1, arbitrary: fc.record({ kind: fc.constant('replace' as const), k: fc.nat(8), to: fc.tuple(coord, coord) }) },
   { weight: 1, arbitrary: fc.record({ kind: fc.constant('cancel' as const), k: fc.nat(8) }) },
@@ -88,7 +91,7 @@ function apply(maxl: Maxl, op: Op): unknown {
   try {
     switch (op.kind) {
       case 'line':
-        return q.append(moveOf(op));
+        return op.fast ? (q.appendIfPlainLine(moveOf(op)) ?? q.append(moveOf(op))) : q.append(moveOf(op));
       case 'dwell':
         return q.append({ dwell_s: op.s });
       case 'again':
@@ -99,9 +102,10 @@ function apply(maxl: Maxl, op: Op): unknown {
         return durations;
       }
       case 'drain': {
-        // What a producer loop's executor does after each add: take segments (final ones, past the capacity) until there is room.
+        // What a producer loop's executor does after each add: take segments (final ones, past the capacity) until there is
+        // room, then (chunk > 1, as for a batch producer) a run of final ones (executeFinalRun without a listener).
         const dry = new DryRun(q);
-        dry.takeWhileFull();
+        dry.takeWhileFull(op.chunk);
         return [dry.segments, dry.duration_s];
       }
       case 'read':

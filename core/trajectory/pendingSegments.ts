@@ -7,11 +7,13 @@
  * (a Segment, its unit vector, its timing) outlives several young-generation
  * collections, which copy it, then promote it: a profile of the planner bench
  * found the collector at 12–30 % of the time. Kept here, a queued segment costs
- * one record of numbers (see RECORD_SCALARS below) and three references, allocated
- * once: its move's numbers (end position, speed and acceleration caps) are copied
- * into the record, so the validated move and its end array die young, and only what is shared (the move's event specs, usually
- * one empty array for all) or made by a transform (actuator positions) is
- * referenced. The validated move is made again, equal, when the object is.
+ * one record of numbers (see RECORD_SCALARS below), allocated once, and three
+ * references when it has events or actuators: its move's numbers (end position,
+ * speed and acceleration caps) are copied into the record, so the validated move
+ * and its end array die young, and only what is shared (the move's event specs) or
+ * made by a transform (actuator positions) is referenced; a segment with neither
+ * (the common case) stores no reference at all (HAS_REFS). The validated move is
+ * made again, equal, when the object is.
  *
  * The store holds one kind of segment only, the common one: a linear move that
  * became a single segment (no nonlinear transform subdividing it), not a dwell.
@@ -25,7 +27,9 @@
  * Slots form a ring: entry i (0 = the oldest) lives at slot (head + i) & mask, and
  * the ring doubles when full.
  */
-import type { ResolvedEventSpec } from './events.ts';
+import { NO_SPECS, type ResolvedEventSpec } from './events.ts';
+import { NO_ACTUATORS } from '../config/transforms.ts';
+import type { LockedLine } from './history.ts';
 import { actuatorRate } from './moves.ts';
 import { Segment } from './segment.ts';
 import { ValidatedMove } from './validatedMove.ts';
@@ -49,8 +53,12 @@ export interface PlannerBlocks {
   finalExit2(offset: number): number;
 }
 
-/** The oldest segment's fields, as readFront() copies them into an object its caller reuses. */
-export interface PendingFront {
+/**
+ * The oldest segment's fields, as readFront() copies them into an object its caller
+ * reuses; the caller adds what locking it decides (LockedLine's start time, entry
+ * and exit speeds², actuator rates) before it records the segment (history.ts).
+ */
+export interface PendingFront extends LockedLine {
   /** Written in place: as many numbers as motion axes. */
   start: number[];
   end: number[];
@@ -59,9 +67,6 @@ export interface PendingFront {
   actuatorStart: number[];
   /** The move's actuators at its end (null only for a dwell, never held here). */
   actuatorEnd: number[] | null;
-  length: number;
-  accel: number;
-  cruise2: number;
 }
 
 /**
@@ -76,8 +81,15 @@ const CRUISE2 = 2;
 /** The move's caps: mm/s and mm/s² (Infinity for the machine's limits). */
 const MAX_VELOCITY = 3;
 const MAX_ACCELERATION = 4;
+/**
+ * 1 when the slot's references are kept in the reference columns; 0 when they are
+ * the shared empty arrays (no event, no actuator: NO_SPECS, NO_ACTUATORS at both
+ * ends), the common case, for which the columns are not touched at all (three
+ * stores, three reads and three clears of references fewer per segment).
+ */
+const HAS_REFS = 5;
 /** Then the start position, the end position and the unit vector, `axes` numbers each. */
-const RECORD_SCALARS = 5;
+const RECORD_SCALARS = 6;
 
 export class PendingSegments {
   private readonly axes: number;
@@ -140,9 +152,27 @@ export class PendingSegments {
       r[p + a + i] = end[i];
       r[p + 2 * a + i] = unit[i];
     }
+    const shared = events === NO_SPECS && actuatorStart === NO_ACTUATORS && actuatorEnd === NO_ACTUATORS;
+    r[o + HAS_REFS] = shared ? 0 : 1;
+    if (shared) return;
     this.events[s] = events;
     this.actuatorStarts[s] = actuatorStart;
     this.actuatorEnds[s] = actuatorEnd;
+  }
+
+  /** Slot s's event specs (see HAS_REFS). */
+  private eventsOf(s: number): readonly ResolvedEventSpec[] {
+    return this.records[s * this.stride + HAS_REFS] === 0 ? NO_SPECS : (this.events[s] as readonly ResolvedEventSpec[]);
+  }
+
+  /** Slot s's actuators at its start (see HAS_REFS). */
+  private actuatorStartOf(s: number): number[] {
+    return this.records[s * this.stride + HAS_REFS] === 0 ? NO_ACTUATORS : (this.actuatorStarts[s] as number[]);
+  }
+
+  /** Slot s's move's actuators at its end (see HAS_REFS). */
+  private actuatorEndOf(s: number): number[] | null {
+    return this.records[s * this.stride + HAS_REFS] === 0 ? NO_ACTUATORS : (this.actuatorEnds[s] as number[] | null);
   }
 
   /**
@@ -174,9 +204,9 @@ export class PendingSegments {
       out.end[i] = r[p + a + i];
       out.unit[i] = r[p + 2 * a + i];
     }
-    out.events = this.events[s] as readonly ResolvedEventSpec[];
-    out.actuatorStart = this.actuatorStarts[s] as number[];
-    out.actuatorEnd = this.actuatorEnds[s] as number[] | null;
+    out.events = this.eventsOf(s);
+    out.actuatorStart = this.actuatorStartOf(s);
+    out.actuatorEnd = this.actuatorEndOf(s);
     out.length = blocks.lengthAt(0);
     out.accel = blocks.accelAt(0);
     out.cruise2 = r[o + CRUISE2];
@@ -213,11 +243,11 @@ export class PendingSegments {
     const start = Array.from(r.subarray(p, p + a));
     const end = Array.from(r.subarray(p + a, p + 2 * a));
     const unit = Array.from(r.subarray(p + 2 * a, p + 3 * a));
-    const actuatorEnd = this.actuatorEnds[s] as number[] | null;
-    const source = new ValidatedMove(end, r[o + MAX_VELOCITY], this.events[s] as ResolvedEventSpec[], null, r[o + MAX_ACCELERATION], actuatorEnd);
+    const actuatorEnd = this.actuatorEndOf(s);
+    const source = new ValidatedMove(end, r[o + MAX_VELOCITY], this.eventsOf(s) as ResolvedEventSpec[], null, r[o + MAX_ACCELERATION], actuatorEnd);
     const length = plans.lengthAt(offset);
     const seg = new Segment(r[o + ID], r[o + MOVE_ID], start, end, unit, length, 0, source);
-    const a0 = this.actuatorStarts[s] as number[];
+    const a0 = this.actuatorStartOf(s);
     seg.actuatorStart = a0;
     seg.actuatorRate = a0.length > 0 ? actuatorRate(a0, actuatorEnd as number[], length) : a0;
     seg.accel = plans.accelAt(offset);
@@ -234,6 +264,7 @@ export class PendingSegments {
 
   /** Drops slot s's references, so that the store keeps nothing alive once a segment left it. */
   private release(s: number): void {
+    if (this.records[s * this.stride + HAS_REFS] === 0) return;
     this.events[s] = undefined;
     this.actuatorStarts[s] = undefined;
     this.actuatorEnds[s] = undefined;

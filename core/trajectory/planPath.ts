@@ -18,7 +18,7 @@
  */
 import { resolveLimits } from '../config/limits.ts';
 import type { LimitsConfig, ResolvedConfig } from '../config/types.ts';
-import { MaxlError } from '../errors.ts';
+import { MaxlError, ownMessage } from '../errors.ts';
 import { trapezoidDuration } from '../plan/phases.ts';
 import { LookaheadPlanner } from '../plan/lookahead.ts';
 import { ColumnarPlannedPath, PathColumns, type PlannedPath } from './plannedPath.ts';
@@ -82,8 +82,10 @@ export function planPath(start: number[], moves: PathMove[], limits: LimitsConfi
   // A final plan is reported by offset from the front, which is row `locked`; its row's
   // duration is timed at once, while the row's inputs are still in cache.
   let locked = 0;
-  const planner = new LookaheadPlanner(0, (offset, entry2, exit2) => {
+  const planner: LookaheadPlanner = new LookaheadPlanner(0, (offset) => {
     const row = locked + offset;
+    const entry2 = planner.finalEntry2(offset);
+    const exit2 = planner.finalExit2(offset);
     columns.entry2s[row] = entry2;
     columns.exit2s[row] = exit2;
     // (A dwell's duration is its own, written when it was appended.)
@@ -201,7 +203,7 @@ function validatePathMove(config: ResolvedConfig, m: PathMove, from: readonly nu
     // The queue's words name `endPosition`; a path move's key is `end`.
     if (err instanceof MaxlError) {
       const field = (err.field ?? '').replace(/^endPosition/, 'end');
-      throw new MaxlError(err.code, err.message.split('endPosition').join('end'), `moves[${i}]${field ? `.${field}` : ''}`);
+      throw new MaxlError(err.code, ownMessage(err).split('endPosition').join('end'), `moves[${i}]${field ? `.${field}` : ''}`);
     }
     throw err;
   }

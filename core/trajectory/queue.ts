@@ -32,7 +32,7 @@ import { MaxlError } from '../errors.ts';
 import { actuatorRate, ZERO_LENGTH_MM } from './moves.ts';
 import type { PendingFront } from './pendingSegments.ts';
 import { shouldDropSpent } from '../plan/spentPrefix.ts';
-import { PHASE_STRIDE, TRAPEZOID_MAX_PHASES, writeTrapezoid } from '../plan/phases.ts';
+import { PHASE_STRIDE, TRAPEZOID_MAX_PHASES, writeTrapezoidOf } from '../plan/phases.ts';
 import type { QueueEventType, QueueView } from './queueView.ts';
 import type { Segment, SegmentState } from './segment.ts';
 import { TailEditing } from './tailEditing.ts';
@@ -158,20 +158,21 @@ export class TrajectoryQueue extends TailEditing implements QueueView {
     // Whatever was transmitted ends by start_us (the transmitted path's end, or earlier).
     if (this.head < this.live.length) this.retireUntil(start_us);
     // As timeFront() and transmitNext(): the front speed (a final plan's entry is the front speed too); the exit is lockFront()'s.
-    const entry2 = this.planner.frontSpeed2;
+    f.entry2 = this.planner.frontSpeed2;
     this.pending.dropFront();
-    const exit2 = this.planner.lockFront();
+    f.exit2 = this.planner.lockFront();
+    f.startTime_us = start_us;
     // Segment.time()'s trapezoid and duration, written into the history's ring (or a buffer) instead of a new array.
     let duration_s: number;
     if (this.history) {
       const a0 = f.actuatorStart;
-      const rate = a0.length > 0 ? actuatorRate(a0, f.actuatorEnd as number[], f.length) : a0;
-      duration_s = this.history.pushTrapezoid(start_us, f.length, entry2, exit2, f.cruise2, f.accel, f.start, f.unit, a0, rate, end.eventValues);
+      f.actuatorRate = a0.length > 0 ? actuatorRate(a0, f.actuatorEnd as number[], f.length) : a0;
+      duration_s = this.history.pushLine(f, end.eventValues);
     } else {
-      const last = (writeTrapezoid(this.timingBuffer, 0, f.length, entry2, exit2, f.cruise2, f.accel) - 1) * PHASE_STRIDE;
+      const last = (writeTrapezoidOf(this.timingBuffer, 0, f) - 1) * PHASE_STRIDE;
       duration_s = this.timingBuffer[last] + this.timingBuffer[last + 1];
     }
-    end.lock(start_us + duration_s * 1e6, exit2, f.end, f.unit, f.cruise2);
+    end.lock(start_us + duration_s * 1e6, f.exit2, f.end, f.unit, f.cruise2);
     // Nothing before it is held any more (all ran), so live holds no segment out of path order.
     if (this.head === this.live.length && this.head > 0) {
       this.live.length = 0;
@@ -180,6 +181,22 @@ export class TrajectoryQueue extends TailEditing implements QueueView {
     this.flushPlanned();
     this.wakeWaiters();
     return duration_s;
+  }
+
+  /**
+   * executeFrontNow() for the front segments while their plan is final, at most
+   * `max` of them (a dry run taking a run: dryRun.ts), stopping at the first that is
+   * not final or when nothing is queued. Each one's duration is added, in path
+   * order, to `tally.duration_s` and counted in `tally.segments`: one call from the
+   * dry run for the whole run, the loop and its checks here, next to the lock.
+   */
+  executeFinalRun(max: number, earliestStart_us: number, tally: { segments: number; duration_s: number }): void {
+    for (let n = 0; n < max && this.planner.isFinal(0); n++) {
+      const duration_s = this.executeFrontNow(earliestStart_us);
+      if (duration_s < 0) return;
+      tally.segments++;
+      tally.duration_s += duration_s;
+    }
   }
 
   /** executeFrontNow() for a segment that must be an object: transmitted, then retired with all before it. */
@@ -307,5 +324,7 @@ export class TrajectoryQueue extends TailEditing implements QueueView {
 /** A PendingFront to read the columnar front into (its fields are overwritten by each read). */
 function emptyFront(axes: number): PendingFront {
   const zeros = () => new Array<number>(axes).fill(0);
-  return { start: zeros(), end: zeros(), unit: zeros(), events: [], actuatorStart: [], actuatorEnd: null, length: 0, accel: 0, cruise2: 0 };
+  // (Its numeric fields start as non-integers, so that the engine keeps them as doubles from the first.)
+  const x = 0.5;
+  return { start: zeros(), end: zeros(), unit: zeros(), events: [], actuatorStart: [], actuatorEnd: null, actuatorRate: [], length: x, accel: x, cruise2: x, entry2: x, exit2: x, startTime_us: x };
 }

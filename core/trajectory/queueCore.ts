@@ -17,7 +17,6 @@ import { LookaheadPlanner } from '../plan/lookahead.ts';
 import { actuatorPosition, NO_ACTUATORS } from '../config/transforms.ts';
 import { NO_SPECS, type ResolvedEventSpec } from './events.ts';
 import {
-  directionInto,
   isPlainLine,
   floorCruise2,
   hasNonlinearTransform,
@@ -119,7 +118,7 @@ export abstract class QueueCore {
     const position = initialPosition ? [...initialPosition] : new Array<number>(config.motionAxes.length).fill(0);
     this.tail = { position, unit: null, cruise2: 0 };
     this.transmitted = new TransmittedEnd(config.motionAxes.length, config.eventChannels.length);
-    this.planner = new LookaheadPlanner(this.capacity, (offset, entry2, exit2) => this.onPlanned(offset, entry2, exit2));
+    this.planner = new LookaheadPlanner(this.capacity, (offset) => this.onPlanned(offset));
     const axes = config.motionAxes.length;
     this.pending = new PendingSegments(axes);
     this.columnar = !hasNonlinearTransform(config);
@@ -190,6 +189,23 @@ export abstract class QueueCore {
     // this move left the front still short of the path it needs.
     if (this.gate.waiting > 0) this.wakeWaiters();
     return receipt;
+  }
+
+  /**
+   * Appends `move` now, as appendValidated(validate(move)) would (the same segment,
+   * ids, plan and receipt), if it is a plain line (moves.ts isPlainLine) that the
+   * columnar tail takes; returns null, changing nothing, for any other move, which
+   * the caller validates and appends. A single add's fast path (Maxl.addSegmentToQueue):
+   * no ValidatedMove is made, only the copy of the end that validateMove would make.
+   */
+  appendIfPlainLine(move: Move): MoveReceipt | null {
+    if (!this.columnar || this.listeners.length > 0 || !isPlainLine(this.config, move)) return null;
+    const moveId = this.nextMoveId;
+    const id = this.enqueueLine(move.endPosition.slice(), move.maxVelocity ?? Infinity, move.maxAcceleration ?? Infinity, NO_SPECS, NO_ACTUATORS, moveId);
+    this.nextMoveId++;
+    this.flushPlanned();
+    if (this.gate.waiting > 0) this.wakeWaiters();
+    return id === LINE_SKIPPED ? { moveId, segmentIds: [], skipped: true } : { moveId, segmentIds: [id], skipped: false };
   }
 
   /** Validates and appends in one step, ignoring the capacity bound. */
@@ -311,7 +327,16 @@ export abstract class QueueCore {
   ): number {
     const tail = this.tail;
     const unit = tail.unit === this.unitBuffers[0] ? this.unitBuffers[1] : this.unitBuffers[0];
-    const length = directionInto(tail.position, end, unit);
+    // moves.ts directionInto, written out here: the engine does not inline it at this depth,
+    // and a length returned from a call is a number allocated on the heap per segment.
+    const from = tail.position;
+    let d2 = 0;
+    for (let i = 0; i < from.length; i++) {
+      const d = end[i] - from[i];
+      d2 += d * d;
+    }
+    const length = Math.sqrt(d2);
+    for (let i = 0; i < from.length; i++) unit[i] = (end[i] - from[i]) / length;
     if (length < ZERO_LENGTH_MM) {
       if (events.length > 0) return LINE_NEEDS_OBJECT;
       this.skippedZeroLength++;
@@ -342,12 +367,12 @@ export abstract class QueueCore {
   // --- the planner's hand-off and telling listeners ---
 
   /** The planner's report of a final plan, by offset from the first untransmitted segment. */
-  private onPlanned(offset: number, entry2: number, exit2: number): void {
+  private onPlanned(offset: number): void {
     // In the columnar tail: the object, when made, is planned and timed from the planner's final plan.
     if (offset >= this.untransmitted) return;
     const seg = this.live[this.live.length - this.untransmitted + offset];
-    seg.entry2 = entry2;
-    seg.exit2 = exit2;
+    seg.entry2 = this.planner.finalEntry2(offset);
+    seg.exit2 = this.planner.finalExit2(offset);
     seg.time();
     if (seg.state === 'unplanned') {
       seg.state = 'planned';

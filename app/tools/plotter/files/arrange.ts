@@ -63,7 +63,7 @@ export function transformPaths(paths: readonly PlotPath[], m: Affine): PlotPath[
       points[i] = m[0] * p.points[i] + m[2] * p.points[i + 1] + m[4];
       points[i + 1] = m[1] * p.points[i] + m[3] * p.points[i + 1] + m[5];
     }
-    return { points, speeds: p.speeds, dwells: p.dwells };
+    return { points, speeds: p.speeds, dwells: p.dwells, lines: p.lines };
   });
 }
 

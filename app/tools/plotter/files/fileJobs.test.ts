@@ -104,4 +104,36 @@ describe('FileJobs', () => {
     expect(last('file-loaded')?.warnings.map((w) => w.line)).toEqual([9, 12, 15, 16]);
     expect(last('file-preview')?.stats.notes).toContain("The pen-down speed 500 mm/s is above the machine's 120 mm/s: it runs at 120 mm/s.");
   });
+
+  it('a move the planner refuses is said with the line of the file it comes from, and nothing is plotted', () => {
+    const { files, jobs, posted, last, logs } = setup();
+    // F0.05 mm/min is 0.00083 mm/s: the import takes any F > 0, the planner no speed below 0.001 mm/s.
+    const text = 'M3\nG1 X10 Y10 F600\nG1 X20 F0.05\nG1 Y20\nM5\n';
+    files.handle({ tool: 'plotter', type: 'file-load', name: 'slow.gcode', text, import: IMPORT, plot: PLOT });
+    const error = last('file-error');
+    expect(error).toMatchObject({ name: 'slow.gcode', line: 3 });
+    expect(error?.message).toMatch(/^“slow.gcode” cannot be plotted: line 3 \(move \d+ of the job\): maxVelocity: must be at least 0.001 mm\/s, got 0.000833/);
+    expect(logs.at(-1)).toMatchObject({ level: 'error', code: 'FILE_INVALID', message: error?.message });
+    expect(posted.some((e) => e.type === 'file-preview')).toBe(false);
+    files.handle({ tool: 'plotter', type: 'file-plot' });
+    expect(jobs).toHaveLength(0);
+  });
+
+  it('the job it hands over says where each move comes from: the G-code line, or the SVG element’s', () => {
+    const { files, jobs } = setup();
+    files.handle({ tool: 'plotter', type: 'file-load', name: 'square.gcode', text: 'M3\nG1 X10 Y10 F600\nG1 X20\nG1 Y20\nM5\n', import: IMPORT, plot: PLOT });
+    files.handle({ tool: 'plotter', type: 'file-plot' });
+    const job = jobs[0];
+    const where = job.moves.map((_, i) => job.describeMove?.(i));
+    expect(where[0]).toBe('the pen lift before the plot');
+    expect(new Set(where.slice(1))).toEqual(new Set(['line 2', 'line 3', 'line 4']));
+
+    files.handle({ tool: 'plotter', type: 'file-load', name: 'plot-shapes.svg', text: svg, import: IMPORT, plot: PLOT });
+    files.handle({ tool: 'plotter', type: 'file-plot' });
+    const svgJob = jobs[1];
+    const svgLines = new Set(svgJob.moves.slice(1).map((_, i) => svgJob.describeMove?.(i + 1)));
+    // One line per drawn element of the fixture, each a line of the file.
+    expect(svgLines.size).toBe(4);
+    for (const w of svgLines) expect(w).toMatch(/^line \d+$/);
+  });
 });

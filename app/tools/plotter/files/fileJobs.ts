@@ -10,14 +10,15 @@
  * Each plan posts `file-preview`: the strokes and travel in machine mm, the travel
  * before and after ordering, and the exact plot time (plotJob.ts).
  */
-import type { LimitsConfig, Maxl, Move } from '../../../../core/index.ts';
+import { batchItemOf, isMoveError, MaxlError, type LimitsConfig, type Maxl, type Move } from '../../../../core/index.ts';
+import { jobMoveError } from '../../../worker/jobMoveError.ts';
 import type { ToolContext, WorkbenchTool } from '../../../worker/toolContext.ts';
 import type { PenSettings } from '../penSequence.ts';
 import { arrange, type Area } from './arrange.ts';
 import { importGcode } from './gcodeImport.ts';
 import { mergePaths, sortPaths } from './ordering.ts';
-import { boundsOf, FileImportError, pathLength, travelLength, type Drawing, type PlotPath } from './paths.ts';
-import { plotJobMoves, plotTime } from './plotJob.ts';
+import { boundsOf, FileImportError, lineOfSegment, pathLength, travelLength, type Drawing, type PlotPath } from './paths.ts';
+import { describeSource, plotJobMoves, plotTime, type MoveSource } from './plotJob.ts';
 import { layerBuffers, travelLines, type PreviewLayer } from './previewLayer.ts';
 import type { FileCommand, FileEvent, FileKind, ImportSettings, PlotSettings, PreviewStats } from './protocol.ts';
 import { importSvg } from './svgImport.ts';
@@ -28,6 +29,8 @@ interface Plan {
   paths: PlotPath[];
   /** The job's moves, which the plot time was planned over. */
   moves: Move[];
+  /** Where each move comes from (its path in `paths`, its segment), for the user's words if one is refused. */
+  sources: MoveSource[];
   stats: PreviewStats;
   layer: PreviewLayer;
 }
@@ -199,13 +202,26 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
     const fileOrder = placed.paths;
     let ordered = s.merge ? mergePaths(fileOrder, s.mergeTolerance_mm) : fileOrder;
     if (s.sort) ordered = sortPaths(ordered, from);
-    const moves = plotJobMoves(ordered, pen);
+    const sources: MoveSource[] = [];
+    const moves = plotJobMoves(ordered, pen, sources);
     const maxl = this.ctx.maxl;
     let plotTime_s: number | null = null;
     let minSegment_us = 0;
     if (maxl) {
       minSegment_us = maxl.feedLimit?.minSegment_us ?? 0;
-      plotTime_s = plotTime(moves, this.ctx.config.motionAxes, start, this.ctx.config.limits, minSegment_us);
+      try {
+        plotTime_s = plotTime(moves, this.ctx.config.motionAxes, start, this.ctx.config.limits, minSegment_us);
+      } catch (err) {
+        // A move the planner refuses (a G-code F too slow for it…): said with the line of the file it comes from.
+        if (!(err instanceof MaxlError) || !isMoveError(err)) throw err;
+        const index = batchItemOf(err)?.index ?? -1;
+        const source = sources[index];
+        const message = `“${d.name}” cannot be plotted: ${jobMoveError(err, index, describeSource(ordered, source)).message}`;
+        this.ctx.log('error', 'FILE_INVALID', message);
+        const line = source && source.path >= 0 ? lineOfSegment(ordered[source.path], source.segment) : null;
+        this.post({ tool: 'plotter', type: 'file-error', name: d.name, message, line });
+        return null;
+      }
     }
     let drawLength_mm = 0;
     for (const p of ordered) drawLength_mm += pathLength(p);
@@ -233,7 +249,7 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
       travelBefore: travelLines(fileOrder, from),
       area,
     };
-    this.plan = { paths: ordered, moves, stats, layer };
+    this.plan = { paths: ordered, moves, sources, stats, layer };
     this.post({ tool: 'plotter', type: 'file-preview', layer, stats }, layerBuffers(layer));
     return this.plan;
   }
@@ -252,7 +268,8 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
     if (plan.stats.fits === false) return refuse(`“${this.drawing.name}” leaves the bed's soft limits: fit it (or scale it down) first; nothing is clipped.`);
     const moves = plan.moves;
     const planned_s = plan.stats.plotTime_s ?? undefined;
-    const started = this.ctx.startJob({ name: this.drawing.name, moves, planned_s });
+    const describeMove = (i: number) => describeSource(plan.paths, plan.sources[i]);
+    const started = this.ctx.startJob({ name: this.drawing.name, moves, planned_s, describeMove });
     this.post({
       tool: 'plotter',
       type: 'file-plot',

@@ -66,16 +66,26 @@ export function importGcode(name: string, text: string, options: GcodeImportOpti
   let pts: number[] = [];
   let speeds: number[] = [];
   let dwells: number[] = [];
+  /** Each segment's line in the file. */
+  let segmentLines: number[] = [];
   const flush = () => {
     if (pts.length >= 4) {
       const anySpeed = speeds.some((v) => v !== 0);
       const anyDwell = dwells.some((v) => v !== 0);
-      paths.push({ points: Float64Array.from(pts), speeds: anySpeed ? Float64Array.from(speeds) : null, dwells: anyDwell ? Float64Array.from(dwells) : null });
+      paths.push({
+        points: Float64Array.from(pts),
+        speeds: anySpeed ? Float64Array.from(speeds) : null,
+        dwells: anyDwell ? Float64Array.from(dwells) : null,
+        lines: Int32Array.from(segmentLines),
+      });
     }
     pts = [];
     speeds = [];
     dwells = [];
+    segmentLines = [];
   };
+  /** The line being read. */
+  let lineNow = 0;
 
   let x = 0, y = 0, z = 0;
   let absolute = true;
@@ -94,9 +104,11 @@ export function importGcode(name: string, text: string, options: GcodeImportOpti
     pts.push(px, py);
     speeds.push(speed);
     dwells.push(0);
+    segmentLines.push(lineNow);
   };
 
   for (const { line, words, junk } of lines) {
+    lineNow = line;
     if (ended) {
       note(`lines after the program's end (M2/M30 at line ${ended}) are ignored`, line);
       continue;

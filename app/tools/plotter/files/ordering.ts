@@ -47,6 +47,16 @@ function join(a: PlotPath, b: PlotPath): PlotPath {
     if (a.speeds) speeds.set(a.speeds, 0);
     if (b.speeds) speeds.set(b.speeds, na - 1 + (touch ? 0 : 1));
   }
+  let lines: Int32Array | null = null;
+  if (a.lines || b.lines) {
+    // As speeds; the gap's segment (when b does not touch) takes the line b starts at.
+    lines = new Int32Array(n - 1);
+    if (a.lines) lines.set(a.lines, 0);
+    if (b.lines) {
+      lines.set(b.lines, na - 1 + (touch ? 0 : 1));
+      if (!touch) lines[na - 1] = b.lines[0] ?? 0;
+    }
+  }
   let dwells: Float64Array | null = null;
   if (a.dwells || b.dwells) {
     dwells = new Float64Array(n);
@@ -57,7 +67,7 @@ function join(a: PlotPath, b: PlotPath): PlotPath {
       for (let k = 0; k < nb; k++) dwells[off + k] += b.dwells[k];
     }
   }
-  return { points, speeds, dwells };
+  return { points, speeds, dwells, lines };
 }
 
 /** x, y of each path's first point (end id 2i) and last point (2i + 1). */

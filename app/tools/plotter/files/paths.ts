@@ -15,6 +15,20 @@ export interface PlotPath {
   speeds: Float64Array | null;
   /** s to hold at each point once reached, pen down (a G4 inside a stroke); null when none. */
   dwells: Float64Array | null;
+  /**
+   * The file's 1-based line each segment comes from (as `speeds`: segment i ends at
+   * point i + 1), 0 where unknown; absent or null when the importer does not say.
+   * For telling the user which line of their file a refused move comes from.
+   */
+  lines?: Int32Array | null;
+}
+
+/** The file's line that segment i of `p` comes from (clamped to its segments), or null when unknown. */
+export function lineOfSegment(p: PlotPath, i: number): number | null {
+  const lines = p.lines;
+  if (!lines || lines.length === 0) return null;
+  const line = lines[Math.max(0, Math.min(lines.length - 1, i))];
+  return line > 0 ? line : null;
 }
 
 /** Something the user must know about the file: where (a line, an element) and what. */
@@ -66,7 +80,8 @@ export function reversed(p: PlotPath): PlotPath {
   // Segment i (points i → i+1) becomes segment n − 2 − i.
   const speeds = p.speeds ? p.speeds.slice().reverse() : null;
   const dwells = p.dwells ? p.dwells.slice().reverse() : null;
-  return { points, speeds, dwells };
+  const lines = p.lines ? p.lines.slice().reverse() : null;
+  return { points, speeds, dwells, lines };
 }
 
 /** mm of pen-down drawing. */

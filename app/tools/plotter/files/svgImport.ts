@@ -166,10 +166,14 @@ class Walker {
     p = p.matrix(this.page).abs().unshort();
     const before = this.paths.length;
     flattenPathData(p, this.tol, this.paths);
+    const line = lineOf(el) ?? 0;
     for (let i = before; i < this.paths.length; i++) {
-      for (const v of this.paths[i].points) {
+      const path = this.paths[i];
+      for (const v of path.points) {
         if (!Number.isFinite(v)) throw new FileImportError(`${describe(el)} has coordinates that are not finite numbers`, lineOf(el));
       }
+      // Every segment of the element's paths comes from its line.
+      if (line > 0) path.lines = new Int32Array(path.points.length / 2 - 1).fill(line);
     }
   }
 }
