@@ -298,7 +298,8 @@ export class LookaheadPlanner {
     const slot = this.first & this.mask;
     if (this.plannedCount > 0) return this.blocks[slot * BLOCK_STRIDE + EXIT2];
     if (this.size === 1) return 0;
-    return Math.min(this.backwardBound(this.first + 1, false), this.blocks[slot * BLOCK_STRIDE + ENTRY2] + 2 * this.blocks[slot * BLOCK_STRIDE + ACCEL] * this.blocks[slot * BLOCK_STRIDE + LENGTH]);
+    const reach2 = this.blocks[slot * BLOCK_STRIDE + ENTRY2] + 2 * this.blocks[slot * BLOCK_STRIDE + ACCEL] * this.blocks[slot * BLOCK_STRIDE + LENGTH];
+    return this.exitWithin(this.first, Math.min(this.backwardBound(this.first + 1, false), reach2));
   }
 
   /**
@@ -405,6 +406,22 @@ export class LookaheadPlanner {
     return Math.min(interior, end) - 2 * this.workAt(junction);
   }
 
+  /**
+   * Block k's exit speed² `exit2` = min(f_k + 2·a_k·L_k, b_{k+1}), held to junction k + 1's
+   * own cap. In exact arithmetic that changes nothing: b_{k+1} is a minimum over j ≥ k + 1
+   * whose j = k + 1 term is cap_{k+1} itself, so b_{k+1} ≤ cap_{k+1}. But b is computed as
+   * C_j − 2·W_{k+1} with C_j = cap_j + 2·W_j, a difference of two sums of the work prefix W,
+   * which grows along the path: each rounding is up to half an ulp of 2·W, about 2.2e-16·W
+   * mm²/s², whatever the cap. Where the cap is far smaller than that (a sub-µm segment whose
+   * cruise cap a link's duration floor made tiny: v² ≈ 3e-14 after W ≈ 8e-6) the rounding
+   * put the junction speed² 4e-8 (relative) above the cap, the segment cruised above its
+   * floor speed and lasted less than the floor. Taking the cap itself where it binds makes
+   * the exit exact there: e ≤ cap holds to the bit.
+   */
+  private exitWithin(k: number, exit2: number): number {
+    return Math.min(exit2, this.blocks[((k + 1) & this.mask) * BLOCK_STRIDE + MAX_ENTRY2]);
+  }
+
   /** Moves the planned pointer forward as far as the plan is final. */
   private advance(toRest: boolean): void {
     const end = this.end;
@@ -420,7 +437,7 @@ export class LookaheadPlanner {
       } else {
         const bound = this.backwardBound(p + 1);
         if (this.boundSetByEnd && reach2 > bound && !toRest) break;
-        exit2 = Math.min(bound, reach2);
+        exit2 = this.exitWithin(p, Math.min(bound, reach2));
         this.blocks[((p + 1) & m) * BLOCK_STRIDE + ENTRY2] = exit2;
       }
       this.blocks[s * BLOCK_STRIDE + EXIT2] = exit2;

@@ -215,36 +215,50 @@ describe.each([2, 3])('planPath with dwells in %i axes', (axes) => {
     dwells: fc.array(fc.record({ after: fc.nat(30), seconds: dwellArb }), { maxLength: 6 }),
   });
 
+  /**
+   * The moves with the dwells among them, and what the plan must be. A move shorter than
+   * 1e-9 mm from the last kept point adds nothing (moves.ts ZERO_LENGTH_MM), so the machine
+   * is still at that point when the next dwell comes: the dwell holds there (`holds`), and
+   * the piece after it starts there, not at the dropped move's end (which can be up to
+   * 1e-9 mm away: enough to turn a later sub-nm move into a kept one, or back).
+   */
   function withDwells(path: { points: number[][]; speeds: (number | undefined)[] }, dwells: { after: number; seconds: number }[]) {
     const moves: PathMove[] = [];
     /** The pieces between dwells, as point lists and speeds, for the reference. */
     const pieces: { points: number[][]; speeds: (number | undefined)[] }[] = [{ points: [path.points[0]], speeds: [] }];
+    /** Where each dwell holds, in order. */
+    const holds: number[][] = [];
+    let kept = path.points[0];
     const dwellsAt = (k: number) => dwells.filter((d) => Math.min(d.after, path.points.length - 1) === k);
-    const addDwells = (k: number, at: number[]) => {
+    const addDwells = (k: number) => {
       for (const d of dwellsAt(k)) {
         moves.push({ dwell_s: d.seconds });
-        pieces.push({ points: [at], speeds: [] });
+        holds.push(kept);
+        pieces.push({ points: [kept], speeds: [] });
       }
     };
-    addDwells(0, path.points[0]);
+    addDwells(0);
     for (let k = 1; k < path.points.length; k++) {
       moves.push({ end: path.points[k], maxVelocity: path.speeds[k - 1] });
       const piece = pieces[pieces.length - 1];
       piece.points.push(path.points[k]);
       piece.speeds.push(path.speeds[k - 1]);
-      addDwells(k, path.points[k]);
+      if (Math.hypot(...path.points[k].map((v, i) => v - kept[i])) >= 1e-9) kept = path.points[k];
+      addDwells(k);
     }
-    return { moves, pieces, total: dwells.reduce((t, d) => t + d.seconds, 0) };
+    return { moves, pieces, holds, total: dwells.reduce((t, d) => t + d.seconds, 0) };
   }
 
   it('rests before and after every dwell, holds there for exactly its time, and is optimal between', () => {
     fc.assert(
       fc.property(input, ({ path, limits, dwells }) => {
-        const { moves, pieces, total } = withDwells(path, dwells);
+        const { moves, pieces, holds, total } = withDwells(path, dwells);
         const p = planPath(path.points[0], moves, limits);
         const l = resolved(limits, axes);
         const lines = p.segments.filter((s) => !s.dwell);
         expect(p.segments.length - lines.length).toBe(dwells.length);
+        // Each dwell holds at the last point the path kept before it.
+        expect(p.segments.filter((s) => s.dwell).map((s) => s.start)).toEqual(holds);
         for (const [k, seg] of p.segments.entries()) {
           if (!seg.dwell) continue;
           expect(seg.length).toBe(0);
