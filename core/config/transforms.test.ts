@@ -96,6 +96,23 @@ describe('transforms', () => {
     );
   });
 
+  it('polar: judges a piece by the peak between its samples, not the samples alone', () => {
+    // Found by dense checks (the property above at more runs): a θ bent hard near the pole,
+    // which peaks between two samples, and a flat-topped θ across a wide arc, which peaks
+    // beside the middle one. Judged by the samples at ¼, ½ and ¾ alone, a piece of each
+    // passed the tolerance, by 1.3e-6 and 1.3e-4 of it.
+    const polar = ([x, y]: readonly number[]) => [Math.hypot(x, y), Math.atan2(y, x) * 50];
+    const cases = [
+      [[5, 0.003979601923493768], [58.82319636173942, 0]],
+      [[5, 1.197496446496894], [51.562737063180606, 0], [5, 0]],
+    ];
+    for (const polarPoints of cases) {
+      const path = polarPoints.map(([r, th]) => [r * Math.cos(th), r * Math.sin(th)]);
+      const cfg = machine([{ type: 'function', from: ['x', 'y'], to: ['r', 'theta'], fn: polar, tolerance: 0.05 }]);
+      expect(worstActuatorError(cfg, polar, path, [50, 0]).worst).toBeLessThanOrEqual(0.05);
+    }
+  });
+
   it('subdivides no more than needed: a tighter tolerance gives more pieces', () => {
     const polar = ([x, y]: readonly number[]) => [Math.hypot(x, y), Math.atan2(y, x) * 50];
     const count = (tolerance: number) =>

@@ -140,10 +140,70 @@ function lerp(a: readonly number[], b: readonly number[], f: number): number[] {
  * T(p(fₖ₊₁)) stays within T's tolerance of T(p(f)) at the same f, on every output.
  *
  * Each piece is tested at ¼, ½ and ¾ of its span and halved while any error
- * exceeds the tolerance. For a smooth T the chord error on a short piece is close
- * to a parabola peaking near the middle, so those three points bound it well;
- * tests check the result by dense sampling.
+ * exceeds the tolerance, judged by the peak between the samples (peakOfSamples),
+ * not by the samples alone. Tests check the result by dense sampling.
  */
+/** Where a piece is tested, as fractions of its span. */
+const QUARTERS = [0.25, 0.5, 0.75];
+
+/** Steps of the grid on which peakOfSamples reads the quartic through the samples. */
+const PEAK_GRID = 64;
+
+/**
+ * The Lagrange basis of the five points 0, ¼, ½, ¾, 1 at x: only the three inner ones,
+ * as the error is 0 at both ends. L_i(x) = Π_{j≠i} (x − x_j)/(x_i − x_j).
+ */
+function innerBasis(x: number): number[] {
+  const xs = [0, ...QUARTERS, 1];
+  return QUARTERS.map((_, n) => {
+    const i = n + 1;
+    let l = 1;
+    for (let j = 0; j < xs.length; j++) if (j !== i) l *= (x - xs[j]) / (xs[i] - xs[j]);
+    return l;
+  });
+}
+
+/** innerBasis at each point of the grid, k/PEAK_GRID for k = 0 … PEAK_GRID. */
+const GRID_BASIS = Array.from({ length: PEAK_GRID + 1 }, (_, k) => innerBasis(k / PEAK_GRID));
+
+/**
+ * The peak |e| over a piece of an error sampled at ¼, ½ and ¾ (and 0 at both ends):
+ * the peak of the quartic through those five points. Three samples alone miss it:
+ * a flat-topped error (a polar θ across a wide arc) peaks beside the middle sample,
+ * and one bent hard at one end (θ near the pole) peaks between two samples; either
+ * let a piece through whose error passed the tolerance (by 1.3e-4 and 1.3e-6 of it:
+ * a dense check found both). The quartic follows both shapes (to 1e-5 of the
+ * tolerance on those pieces, or above them). Its peak is read on a grid of
+ * PEAK_GRID steps and refined by parabolaPeak at the grid's largest value.
+ */
+export function peakOfSamples(e1: number, e2: number, e3: number): number {
+  const values = GRID_BASIS.map(([l1, l2, l3]) => e1 * l1 + e2 * l2 + e3 * l3);
+  return parabolaPeak(values);
+}
+
+/**
+ * The peak |v| of values sampled at evenly spaced points, estimated by the parabola
+ * through the largest |v| (not an end) and its two neighbours.
+ *
+ * With z = v·sign(v_i) at the largest sample i and its neighbours z₋, z₀, z₊ at
+ * x = −1, 0, 1 (in sample steps), the parabola is z(x) = z₀ + b·x + c·x² with
+ * b = (z₊ − z₋)/2 and c = (z₊ − 2·z₀ + z₋)/2. As z₀ ≥ |v₋|, |v₊| ≥ z₋, z₊: c ≤ 0, and
+ * |z₊ − z₋| ≤ (z₀ − z₊) + (z₀ − z₋) = −2c gives |b| ≤ −c, so its vertex x* = −b/2c lies
+ * within half a step of sample i, and its top is z(x*) = z₀ − b²/4c ≥ z₀ (= z₀ when
+ * c = 0, a flat run).
+ */
+function parabolaPeak(values: readonly number[]): number {
+  let i = 1;
+  for (let j = 2; j + 1 < values.length; j++) if (Math.abs(values[j]) > Math.abs(values[i])) i = j;
+  const sign = values[i] < 0 ? -1 : 1;
+  const z0 = sign * values[i];
+  const zMinus = sign * values[i - 1];
+  const zPlus = sign * values[i + 1];
+  const b = (zPlus - zMinus) / 2;
+  const c = (zPlus - 2 * z0 + zMinus) / 2;
+  return c < 0 ? z0 - (b * b) / (4 * c) : z0;
+}
+
 export function subdivisionFractions(
   transforms: readonly ResolvedTransform[],
   p0: readonly number[],
@@ -157,16 +217,15 @@ export function subdivisionFractions(
   };
   const fractions = [0];
   const split = (f0: number, y0: number[][], f1: number, y1: number[][], depth: number): void => {
+    const ys = QUARTERS.map((q) => at(f0 + (f1 - f0) * q));
     let worst = 0;
-    for (const q of [0.25, 0.5, 0.75]) {
-      const y = at(f0 + (f1 - f0) * q);
-      nonlinear.forEach((t, k) => {
-        for (let o = 0; o < y[k].length; o++) {
-          const chord = y0[k][o] + (y1[k][o] - y0[k][o]) * q;
-          worst = Math.max(worst, Math.abs(y[k][o] - chord) / t.tolerance);
-        }
-      });
-    }
+    nonlinear.forEach((t, k) => {
+      for (let o = 0; o < y0[k].length; o++) {
+        // The chord error at ¼, ½ and ¾ of the piece (0 at both ends).
+        const [e1, e2, e3] = QUARTERS.map((q, i) => ys[i][k][o] - (y0[k][o] + (y1[k][o] - y0[k][o]) * q));
+        worst = Math.max(worst, peakOfSamples(e1, e2, e3) / t.tolerance);
+      }
+    });
     if (worst <= 1 || depth >= MAX_DEPTH) {
       fractions.push(f1);
       if (fractions.length > MAX_PIECES_PER_MOVE + 1) {
