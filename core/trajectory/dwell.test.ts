@@ -219,4 +219,23 @@ describe('planPath with dwells', () => {
     for (const s of floored.segments) expect(s.duration).toBeGreaterThanOrEqual(0.005 - 1e-12);
     expect(floored.duration).toBeGreaterThan(free.duration);
   });
+
+  it('keeps a floor on sub-µm segments, where the junction speed is tiny beside the work before it', () => {
+    // Found by the planPath floor property at 6 000 runs: a 27 nm line then a 2.7 nm one straight
+    // on, each capped to ~1.7e-6 and ~1.7e-7 mm/s by a 15.7 ms floor. The lookahead's bound
+    // (cap + 2W) − 2W rounded 4e-8 above the second line's cap v² ≈ 3e-14, so it cruised above
+    // its floor speed and lasted 1.57e-11 s less than the floor.
+    const floor_us = 15720.370845607169;
+    const p = planPath([0, 0, 0], [{ end: [0, -2.7258327910444166e-8, 0] }, { end: [0, -2.998416070148858e-8, 0] }], {
+      junctionDeviation: 0.001,
+      maxVelocity: 5,
+      maxAcceleration: 279.8922426838547,
+    }, { minSegment_us: floor_us });
+    expect(p.segments.length).toBe(2);
+    for (const s of p.segments) {
+      expect(s.duration).toBeGreaterThanOrEqual(floor_us * 1e-6);
+      // The floor's speed, length / floor, is the cap, and no phase goes above it.
+      expect(s.peakVelocity).toBeLessThanOrEqual(s.length / (floor_us * 1e-6));
+    }
+  });
 });
