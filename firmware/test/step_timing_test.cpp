@@ -7,7 +7,7 @@
 // present, none before its ideal time (the exact position crossing the
 // step's threshold), none later than one step period after it. The tests
 // hold the timed stepper to more: its lag must stay within what the design
-// allows (stepper.h: the window's bend c·W²/4 <= s/8 plus
+// allows (stepper.h: the window's bend c·W²/4 <= s/2^MAXL_STEP_BEND_SHIFT plus
 // MAXL_STEP_LAG_UNITS, over the speed).
 #include <gtest/gtest.h>
 
@@ -496,9 +496,9 @@ std::vector<Seg> fortyKilohertz(int cruise, double sign = 1) {
 }
 
 const double S80 = 65536.0 / 80.0;
-// The design's lag bound in units: bend <= s/8, the margin, and the
+// The design's lag bound in units: bend <= s/2^MAXL_STEP_BEND_SHIFT, the margin, and the
 // fixed-point path's own error (a few units over these short segments).
-const double SLACK = S80 / 8 + MAXL_STEP_LAG_UNITS + 12;
+const double SLACK = S80 / (1 << MAXL_STEP_BEND_SHIFT) + MAXL_STEP_LAG_UNITS + 12;
 
 int32_t stepOf(int32_t units) { return (int32_t)std::floor(units / S80 + 0.5); }
 
@@ -640,7 +640,7 @@ TEST(TimedStepper, FastMotorWindowsAreSplit) {
   rig.runUntil(Rig::clock(rig.path.end() + 5000), cadence(50));
   int32_t total = (int32_t)std::floor(mm(45.0) / s + 0.5);
   ASSERT_EQ(total, 9000);
-  Verdict v = judge(rig.path, stepEdges(2, 5), s, 0, total, s / 8 + MAXL_STEP_LAG_UNITS + 12);
+  Verdict v = judge(rig.path, stepEdges(2, 5), s, 0, total, s / (1 << MAXL_STEP_BEND_SHIFT) + MAXL_STEP_LAG_UNITS + 12);
   EXPECT_EQ(v.got, total);
   EXPECT_EQ(v.early, 0);
   EXPECT_EQ(v.late, 0);
