@@ -221,12 +221,14 @@
 // How far a timed window's chord may stray from the path where it bends: at
 // most s/2^MAXL_STEP_BEND_SHIFT (s the units per step; readers/stepper.h). A
 // step then lags its exact time by at most that over the speed, plus
-// MAXL_STEP_LAG_UNITS: 1/2^k of a step period, never early. Each step of the
-// shift halves the windows in a ramp (at 10 000 mm/s² and 80 steps/mm:
-// 2 048 µs for s/2, 1 024 µs for s/8), and so doubles the planning a ramp
-// costs. s/2 (1) by default: three steppers on an Uno at 20 kHz need the
-// longer ramp windows (firmware/README.md, Benchmark, round 8); 3 is the s/8
-// of rounds 1-7 (steps at most 1/8 period late, fewer steppers or lower rates).
+// MAXL_STEP_LAG_UNITS: 1/2^k of a step period, never early. The bend grows as
+// W², so a bound 4× tighter (the shift + 2) halves the windows in a ramp and
+// doubles what planning a ramp costs; on the power-of-two grid a shift + 1
+// halves them or not, by the acceleration (at 10 000 mm/s² and 80 steps/mm:
+// 2 048 µs for s/2, 1 024 µs for s/4 and s/8). s/2 (1) by default: three
+// steppers on an Uno at 20 kHz need the longer ramp windows (firmware/README.md,
+// Benchmark, round 8); 3 is the s/8 of rounds 1-7 (steps at most 1/8 period
+// late, for fewer steppers or lower rates).
 #ifndef MAXL_STEP_BEND_SHIFT
 #define MAXL_STEP_BEND_SHIFT 1
 #endif
