@@ -7,7 +7,7 @@
 // present, none before its ideal time (the exact position crossing the
 // step's threshold), none later than one step period after it. The tests
 // hold the timed stepper to more: its lag must stay within what the design
-// allows (stepper.h: the window's bend c·W²/4 <= s/8 plus
+// allows (stepper.h: the window's bend c·W²/4 <= s/2^MAXL_STEP_BEND_SHIFT plus
 // MAXL_STEP_LAG_UNITS, over the speed).
 #include <gtest/gtest.h>
 
@@ -496,9 +496,9 @@ std::vector<Seg> fortyKilohertz(int cruise, double sign = 1) {
 }
 
 const double S80 = 65536.0 / 80.0;
-// The design's lag bound in units: bend <= s/8, the margin, and the
+// The design's lag bound in units: bend <= s/2^MAXL_STEP_BEND_SHIFT, the margin, and the
 // fixed-point path's own error (a few units over these short segments).
-const double SLACK = S80 / 8 + MAXL_STEP_LAG_UNITS + 12;
+const double SLACK = S80 / (1 << MAXL_STEP_BEND_SHIFT) + MAXL_STEP_LAG_UNITS + 12;
 
 int32_t stepOf(int32_t units) { return (int32_t)std::floor(units / S80 + 0.5); }
 
@@ -640,7 +640,7 @@ TEST(TimedStepper, FastMotorWindowsAreSplit) {
   rig.runUntil(Rig::clock(rig.path.end() + 5000), cadence(50));
   int32_t total = (int32_t)std::floor(mm(45.0) / s + 0.5);
   ASSERT_EQ(total, 9000);
-  Verdict v = judge(rig.path, stepEdges(2, 5), s, 0, total, s / 8 + MAXL_STEP_LAG_UNITS + 12);
+  Verdict v = judge(rig.path, stepEdges(2, 5), s, 0, total, s / (1 << MAXL_STEP_BEND_SHIFT) + MAXL_STEP_LAG_UNITS + 12);
   EXPECT_EQ(v.got, total);
   EXPECT_EQ(v.early, 0);
   EXPECT_EQ(v.late, 0);
@@ -887,6 +887,7 @@ TEST(TimedStepperGrid, TwoSteppersAtUnequalRatesEveryStepOnTime) {
 // wherever gridSized(t1) holds, lookAt on a copy of the walk gives exactly
 // gridTooMany's position and does not move the copy.
 struct MAXL_StepperGridCheck {
+  static uint16_t windowFor(const MAXL_Stepper& s, int32_t c) { return s.windowFor(c); }
   int sized = 0, notSized = 0, mismatched = 0, moved = 0;
   void at(const Motion& motion, const MAXL_Stepper& s) {
     if (!s.synced_ || s.look_.state == Lookahead::REST) return;
@@ -932,4 +933,49 @@ TEST(TimedStepperGrid, WindowEndReusesTheSizingPositionOnlyWhereLookAtAgrees) {
   EXPECT_EQ(check.moved, 0);
   EXPECT_EQ(rig.a.steps(), 0);
   EXPECT_EQ(rig.b.steps(), 0);
+}
+
+// The bend criterion (stepper.h, config.h): windowFor(c) is the longest power
+// of two W from MAXL_STEP_WINDOW_MAX_US down to MAXL_STEP_WINDOW_MIN_US whose
+// bend |C|·W²/2^34 is at most s/2^MAXL_STEP_BEND_SHIFT, i.e. |C|·W² <= s·2^(34 − b)
+// exactly (128-bit here), or the shortest where none is. Checked at every
+// bound and ±1 around it, at random |C| and at INT32_MIN, both signs, for
+// step sizes from 1/256 mm down to 1/3200 mm.
+TEST(TimedStepperGrid, WindowIsTheLongestWhoseBendIsWithinTheBound) {
+  host::reset();
+  uint32_t seed = 12345;
+  auto next = [&seed]() { return seed = seed * 1664525u + 1013904223u; };
+  int checked = 0, atMax = 0, shorter = 0;
+  for (float stepsPerMm : {1.0f, 5.0f, 80.0f, 200.0f, 256.0f, 3200.0f}) {
+    MAXL_Stepper stepper("bend", 2, 5, stepsPerMm);
+    const uint64_t units = (uint64_t)(uint32_t)stepper.generator().unitsPerStep();
+    auto expected = [&](int32_t c) {
+      unsigned __int128 a = c < 0 ? (unsigned __int128)(-(int64_t)c) : (unsigned __int128)c;
+      for (uint32_t w = MAXL_STEP_WINDOW_MAX_US; w >= MAXL_STEP_WINDOW_MIN_US; w >>= 1)
+        if (a * w * w <= ((unsigned __int128)units << (34 - MAXL_STEP_BEND_SHIFT))) return (uint16_t)w;
+      return (uint16_t)MAXL_STEP_WINDOW_MIN_US;
+    };
+    std::vector<int32_t> cs = {0, 1, -1, INT32_MAX, INT32_MIN};
+    for (uint32_t w = MAXL_STEP_WINDOW_MAX_US; w >= MAXL_STEP_WINDOW_MIN_US; w >>= 1) {
+      uint64_t bound = (units << (34 - MAXL_STEP_BEND_SHIFT)) / ((uint64_t)w * w);  // the largest |C| for w
+      for (int64_t d = -1; d <= 1; d++) {
+        int64_t c = (int64_t)bound + d;
+        if (c >= 0 && c <= INT32_MAX) {
+          cs.push_back((int32_t)c);
+          cs.push_back((int32_t)-c);
+        }
+      }
+    }
+    for (int i = 0; i < 20000; i++) cs.push_back((int32_t)(next() >> (next() % 31)));
+    for (int32_t c : cs) {
+      uint16_t got = MAXL_StepperGridCheck::windowFor(stepper, c);
+      ASSERT_EQ(got, expected(c)) << "c " << c << " at " << stepsPerMm << " steps/mm";
+      checked++;
+      if (got == MAXL_STEP_WINDOW_MAX_US) atMax++;
+      else shorter++;
+    }
+  }
+  EXPECT_GT(checked, 120000);
+  EXPECT_GT(atMax, 1000);
+  EXPECT_GT(shorter, 1000);
 }

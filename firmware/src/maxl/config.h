@@ -218,6 +218,21 @@
 #define MAXL_STEP_WINDOW_MIN_US 128U
 #endif
 
+// How far a timed window's chord may stray from the path where it bends: at
+// most s/2^MAXL_STEP_BEND_SHIFT (s the units per step; readers/stepper.h). A
+// step then lags its exact time by at most that over the speed, plus
+// MAXL_STEP_LAG_UNITS: 1/2^k of a step period, never early. The bend grows as
+// W², so a bound 4× tighter (the shift + 2) halves the windows in a ramp and
+// doubles what planning a ramp costs; on the power-of-two grid a shift + 1
+// halves them or not, by the acceleration (at 10 000 mm/s² and 80 steps/mm:
+// 2 048 µs for s/2, 1 024 µs for s/4 and s/8). s/2 (1) by default: three
+// steppers on an Uno at 20 kHz need the longer ramp windows (firmware/README.md,
+// Benchmark, round 8); 3 is the s/8 of rounds 1-7 (steps at most 1/8 period
+// late, for fewer steppers or lower rates).
+#ifndef MAXL_STEP_BEND_SHIFT
+#define MAXL_STEP_BEND_SHIFT 1
+#endif
+
 // Most steps one window may hold: where a window would hold more (over
 // ~47 kHz in a 2 ms window), it is halved (down to MAXL_STEP_WINDOW_MIN_US).
 // The rest of a run's 127 is room for a catch-up burst.
@@ -264,6 +279,9 @@
 
 #if MAXL_STEP_WINDOW_STEPS < 1 || MAXL_STEP_WINDOW_STEPS > 120
 #error "MAXL_STEP_WINDOW_STEPS must be 1..120 (a run holds 127 steps)"
+#endif
+#if MAXL_STEP_BEND_SHIFT < 1 || MAXL_STEP_BEND_SHIFT > 8
+#error "MAXL_STEP_BEND_SHIFT must be 1..8 (the bend at most s/2 .. s/256)"
 #endif
 #if MAXL_STEP_RING < 2 || MAXL_STEP_RING > 32
 #error "MAXL_STEP_RING must be 2..32"

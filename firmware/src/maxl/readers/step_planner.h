@@ -12,7 +12,8 @@
 // two), or earlier where the path's piece ends (a phase, a segment, a brake
 // piece, a pending HALT: the same instants for every slot, since every slot
 // follows the same σ(t)). W is the shortest window any stepper needs: the
-// longest whose bend c·W²/4 stays under s/8 for that stepper's slot
+// longest whose bend c·W²/4 stays under s/2^MAXL_STEP_BEND_SHIFT (s/2) for
+// that stepper's slot
 // (stepper.h), halved while any stepper would get more than
 // MAXL_STEP_WINDOW_STEPS steps in it.
 //

@@ -185,12 +185,13 @@ bool MAXL_Stepper::tooManySteps(int32_t delta) const {
 }
 
 // The longest window (a power of two) whose bend c·W²/4 = |C|·W²/2^34 is at
-// most s/8: with W = 2^k that is |C| <= s·2^(31 − 2k). From the longest
+// most s/2^b (b = MAXL_STEP_BEND_SHIFT): with W = 2^k that is
+// |C| <= s·2^(34 − b − 2k). From the longest
 // window down, each halving multiplies the bound by 4 (saturating: a bound
 // past 2^32 holds for every C), so there is no variable shift.
 namespace {
 constexpr uint8_t log2u(uint32_t x) { return x <= 1 ? 0 : (uint8_t)(1 + log2u(x >> 1)); }
-const uint8_t WINDOW_MAX_SHIFT = (uint8_t)(31 - 2 * log2u(MAXL_STEP_WINDOW_MAX_US));  // 9 for 2048 µs
+const uint8_t WINDOW_MAX_SHIFT = (uint8_t)(34 - MAXL_STEP_BEND_SHIFT - 2 * log2u(MAXL_STEP_WINDOW_MAX_US));  // 11 for s/2 and 2048 µs
 }  // namespace
 
 __attribute__((noinline)) uint16_t MAXL_Stepper::windowFor(int32_t c) const {

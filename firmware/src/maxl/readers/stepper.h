@@ -36,9 +36,9 @@
 // path is never below its tangent. Either way every step lags the exact path
 // by at most c·W²/4 plus MAXL_STEP_LAG_UNITS (which covers the fixed-point
 // path's own error), i.e. by that distance over the speed in time: W is
-// halved until c·W²/4 is at most s/8, so the lag stays under 1/8 step period
-// plus the margin, at any acceleration the fixed-point path allows down to
-// W = 128 µs.
+// halved until c·W²/4 is at most s/2^MAXL_STEP_BEND_SHIFT (s/2 by default,
+// config.h), so the lag stays under half a step period plus the margin, at
+// any acceleration the fixed-point path allows down to W = 128 µs.
 //
 // Without a timer (host tests by default, wasm) it steps from loop(): every
 // step due at each evaluation.
