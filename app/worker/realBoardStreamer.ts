@@ -29,6 +29,11 @@
  * and the round trip it counts is the worst of those 10 s (`lagAllowance_us`,
  * `lagCover`, core/time/recentWorst.ts): 13.28 ms stays the margin where the
  * machine keeps to it, and a loaded machine gets the lead its hold-backs need.
+ * Once one hold-back is seen, the lead gains at least BUSY_EXCESS_US, 100 ms:
+ * on a loaded machine (the WebSerial spec beside two CPU burners) the next
+ * hold-back came within a second and 1.7–3.8 times as long as the first, and
+ * the worst held the bytes 87 ms on their way to the boards: twice the first
+ * did not cover it (`busyExcess_us`).
  *
  * At USB round trips (1.5–3 ms for a USB full-speed CDC board; ~3 ms for the
  * USB bridge of an Uno) the lead is 2·3 + 13.28 = 19.3 ms ≤ 20 ms. Before the
@@ -51,6 +56,9 @@ export const TIMER_CLAMP_US = 4_000;
 /** The worker's longest task between pumps, and the OS's slice, µs. */
 export const WORKER_TASK_US = 4_000;
 
+/** The least a lead gains, µs, once the machine has held the worker back beyond its allowance (the header). */
+export const BUSY_EXCESS_US = 100_000;
+
 /** Margins for ports bridged through the page (workers without Web Serial/WebUSB). */
 export const BRIDGED_STREAMER: Partial<StreamerOptions> = { minLead_us: 80_000, leadMargin_us: 80_000, startMargin_us: 80_000, lagAllowance_us: 80_000 };
 
@@ -71,5 +79,5 @@ export function realBoardStreamer(links: readonly RealLink[]): Partial<StreamerO
   if (links.some((l) => l.bridged)) return BRIDGED_STREAMER;
   const burst = Math.max(0, ...links.map((l) => burst_us(l.bytesPerSecond)));
   const margin = Math.round(burst + TIMER_CLAMP_US + WORKER_TASK_US);
-  return { leadMargin_us: margin, startMargin_us: margin, lagAllowance_us: TIMER_CLAMP_US + WORKER_TASK_US };
+  return { leadMargin_us: margin, startMargin_us: margin, lagAllowance_us: TIMER_CLAMP_US + WORKER_TASK_US, busyExcess_us: BUSY_EXCESS_US };
 }

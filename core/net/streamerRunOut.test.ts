@@ -15,7 +15,7 @@ import { RecentWorst } from '../time/recentWorst.ts';
 import { TrajectoryQueue } from '../trajectory/queue.ts';
 import { ClockMap } from './clockMap.ts';
 import type { SendResult, StreamDevice } from './streamDevice.ts';
-import { Streamer, type StreamerOptions } from './streamer.ts';
+import { Streamer, type StreamerEvent, type StreamerOptions } from './streamer.ts';
 
 /** A device that acknowledges at once, until told to hold its acks. */
 class AckingDevice implements StreamDevice {
@@ -51,21 +51,23 @@ class AckingDevice implements StreamDevice {
   }
 }
 
-/** Virtual time whose first timer set for each of `from_us` or later fires `late_us` late: a thread held back once each time. */
+/**
+ * Virtual time whose first timer set for each of `from_us` or later fires late
+ * (by `late_us`, or by the matching entry of it): a thread held back once each time.
+ */
 class HeldBack extends VirtualScheduler {
   private readonly from_us: number[];
-  constructor(
-    from_us: number | number[],
-    private readonly late_us: number,
-  ) {
+  private readonly late_us: number[];
+  constructor(from_us: number | number[], late_us: number | number[]) {
     super(0);
     this.from_us = [from_us].flat();
+    this.late_us = Array.isArray(late_us) ? [...late_us] : this.from_us.map(() => late_us);
   }
 
   override at(at_us: number, callback: () => void): Timer {
     if (this.from_us.length === 0 || at_us < this.from_us[0]) return super.at(at_us, callback);
     this.from_us.shift();
-    return super.at(at_us + this.late_us, callback);
+    return super.at(at_us + (this.late_us.shift() ?? 0), callback);
   }
 }
 
@@ -80,17 +82,19 @@ class ReportsLateness extends VirtualScheduler {
   }
 }
 
-function streamTo(scheduler: VirtualScheduler, names: string[], options: Partial<StreamerOptions> = {}) {
+/** A streamer to `names` (queues of `capacity` segments), and what it reported (its events). */
+function streamTo(scheduler: VirtualScheduler, names: string[], options: Partial<StreamerOptions> = {}, capacity = 32) {
   const config = resolveConfig(lightPainter().config);
   const queue = new TrajectoryQueue(config, [10, 10]);
   const devices = names.map(() => new AckingDevice(scheduler));
   const slots = config.motionAxes.map((_, index) => ({ space: 'motion' as const, index }));
-  const bindings = names.map((name, i) => ({ name, device: devices[i], positionSlots: slots, eventSlots: new Map<number, number>(), capacity: 32 }));
-  const streamer = new Streamer(queue, scheduler, bindings, () => undefined, options);
+  const bindings = names.map((name, i) => ({ name, device: devices[i], positionSlots: slots, eventSlots: new Map<number, number>(), capacity }));
+  const events: StreamerEvent[] = [];
+  const streamer = new Streamer(queue, scheduler, bindings, (e) => events.push(e), options);
   streamer.start();
   // 20 mm at 50 mm/s: ~0.4 s, sliced a few ms at a time.
   queue.append({ endPosition: [30, 10], maxVelocity: 50 });
-  return { streamer, devices };
+  return { streamer, devices, queue, events };
 }
 
 describe('why devices ran out of timing (Streamer.runOutReason)', () => {
@@ -174,6 +178,44 @@ describe('a lead that follows the pumps’ lateness (lagAllowance_us)', () => {
       else expect(second).toBeNull();
       streamer.stop();
     }
+  });
+
+  it('once held back, covers a longer hold-back with the busy excess (busyExcess_us), where twice the first runs out', async () => {
+    // A 14 ms hold-back (6 ms beyond the allowance), then, 150 ms later, one of 60 ms: 4.3 times as long.
+    for (const busyExcess_us of [0, 100_000]) {
+      const scheduler = new HeldBack([100_000, 250_000], [14_000, 60_000]);
+      const { streamer } = streamTo(scheduler, ['a'], { ...REAL, busyExcess_us });
+      await scheduler.runUntil(200_000);
+      expect(streamer.runOutReason()).toBeNull();
+      // lagCover's 2 · 6 ms, or the busy excess.
+      expect(streamer.lead_us).toBe(15_280 + Math.max(12_000, busyExcess_us));
+      expect(streamer.startLead_us).toBe(14_280 + Math.max(12_000, busyExcess_us));
+      await scheduler.runUntil(330_000);
+      const second = streamer.runOutReason(80_000);
+      if (busyExcess_us === 0) expect(second).toMatch(/^the author's next pump came 6\d\.\d ms after the one before/);
+      else expect(second).toBeNull();
+      streamer.stop();
+    }
+  });
+
+  it('sends the busy excess where the devices have room, and calls only a path short of the quiet lead a buffer conflict', async () => {
+    // 30 pieces of 0.5 mm at 50 mm/s (10 ms each) to devices of 8 segments: the quiet
+    // lead (15.3 ms) and the braking distance fit; the busy lead (115.3 ms) does not.
+    const scheduler = new HeldBack(20_000, 14_000);
+    const { streamer, queue, events } = streamTo(scheduler, ['a'], { ...REAL, busyExcess_us: 100_000 }, 8);
+    for (let i = 1; i <= 30; i++) queue.append({ endPosition: [30 + 0.5 * i, 10], maxVelocity: 50 });
+    let worstAhead_us = 0;
+    for (let t = 450_000; t <= 1_000_000; t += 1_000) {
+      await scheduler.runUntil(t);
+      worstAhead_us = Math.max(worstAhead_us, queue.transmittedEnd_us - t);
+    }
+    expect(streamer.lead_us).toBe(115_280);
+    expect(events.filter((e) => e.type === 'conflict')).toEqual([]);
+    expect(streamer.runOutReason()).toBeNull();
+    // What fits was sent: more than the quiet lead, less than the busy one.
+    expect(worstAhead_us).toBeGreaterThan(15_280);
+    expect(worstAhead_us).toBeLessThan(115_280);
+    streamer.stop();
   });
 
   it('stays as it was by default (Infinity), whatever the pumps do', async () => {
