@@ -6,17 +6,22 @@
  * settings (queue capacity and all):
  *  - incremental, per point: through the queue, one awaited addSegmentToQueue per
  *    point (the paper's Listing 2), drained by a DryRun (core/trajectory/dryRun.ts),
- *    an executor with no device that takes a segment whenever the queue has no room
- *    (takeWhileFull()), then the rest at the end; one MAXL per path, kept across runs
- *    as a workbench keeps it across jobs;
+ *    an executor with no device; one MAXL per path, kept across runs as a workbench
+ *    keeps it across jobs;
  *  - incremental, batch: the same queue and plan, fed by the batch API
  *    (maxl.addSegmentsNow(moves, from): appends synchronously while there is room,
  *    no promise per point) from the moves made once before the runs, as planPath's
- *    are; the dry run, once it must take a segment, takes final ones until the queue
- *    has room for a run of BATCH_RUN (as a streamer fills a board's buffer in runs:
- *    takeWhileFull(BATCH_RUN)), so that the producer appends runs. Locking a final
- *    segment changes no plan: the plan is the per-point loop's, which
- *    durationRatio checks for both;
+ *    are;
+ *    both incremental ways have the same executor, so that they differ only in the
+ *    producer's API: after each add (per point) or run of adds (batch) the dry run
+ *    checks for room, and once the queue has none it takes final segments until
+ *    there is room for a run of EXECUTOR_RUN (takeWhileFull(EXECUTOR_RUN)), as the
+ *    device streamer (core/net/streamer.ts) tops a board's buffer up by a refill's
+ *    worth of path, not one segment per tick; then the rest at the end. Locking a
+ *    final segment changes no plan: the plan is the one a dry run taking one segment
+ *    at a time makes, which durationRatio checks for both. (Taking one segment
+ *    after each add instead, producer and executor alternate per point; the
+ *    per-point loop then ran 1.2-1.3x slower per CPU second, the same plan.)
  *  - batch: planPath over the whole path.
  *
  * Figures, per path and per way (incremental = per point, incrementalBatch, planPath):
@@ -53,8 +58,8 @@ import { benchPaths, fineCircle, BENCH_LIMITS, type BenchPath } from './paths.ts
 
 const RUNS = Number(process.env.BENCH_RUNS ?? 5);
 const WARMUP = 2;
-/** Segments of room the batch run's dry run makes at a time (see the header). */
-const BATCH_RUN = 64;
+/** Segments of room the dry run makes at a time, once it must take (see the header). */
+const EXECUTOR_RUN = 64;
 
 /** The paths to plan: all four, or those named by `--path a,b`. */
 function selectedPaths(): BenchPath[] {
@@ -97,7 +102,7 @@ async function incremental(maxl: ReturnType<typeof machineFor>, path: BenchPath)
   const t0 = performance.now();
   for (const p of path.points) {
     await maxl.addSegmentToQueue({ endPosition: p });
-    dry.takeWhileFull();
+    dry.takeWhileFull(EXECUTOR_RUN);
   }
   dry.finish();
   const seconds = (performance.now() - t0) / 1000;
@@ -114,7 +119,7 @@ function incrementalBatch(maxl: ReturnType<typeof machineFor>, path: BenchPath, 
   let next = 0;
   while (next < moves.length) {
     next = maxl.addSegmentsNow(moves, next);
-    dry.takeWhileFull(BATCH_RUN);
+    dry.takeWhileFull(EXECUTOR_RUN);
   }
   dry.finish();
   const seconds = (performance.now() - t0) / 1000;
@@ -230,7 +235,7 @@ console.log(
     limits: BENCH_LIMITS,
     runs: RUNS,
     warmupRuns: WARMUP,
-    batchRun: BATCH_RUN,
+    executorRun: EXECUTOR_RUN,
     paths: results,
     machine: { cpu: os.cpus()[0]?.model, node: process.version, loadAverage1m: +os.loadavg()[0].toFixed(2) },
   }),

@@ -4,7 +4,8 @@
  * segments, the same plan and the same as-planned history to the bit, and the same
  * refusals (naming the move: `moves[i]…`), whether the queue keeps them as columns
  * or, with a listener, as objects; and a dry run that takes runs of final segments
- * (DryRun.takeWhileFull(run)) must lock what one taking a segment at a time locks.
+ * (DryRun.takeWhileFull(run)) must lock what one taking a segment at a time locks,
+ * behind the batch API and behind awaited single adds (the planner bench's two loops).
  */
 import { describe, expect, it } from 'vitest';
 import fc from 'fast-check';
@@ -85,6 +86,49 @@ function inRuns(maxl: Maxl, moves: Move[], run: number): string[] {
   dry.finish();
   return refused;
 }
+
+/**
+ * The per-point producer loop of the planner bench (the paper's Listing 2): one awaited
+ * addSegmentToQueue per move, a dry run taking runs of `run` after each; a refused move
+ * is noted and skipped.
+ */
+async function perPointInRuns(maxl: Maxl, moves: Move[], run: number): Promise<string[]> {
+  const dry = new DryRun(queueOf(maxl));
+  const refused: string[] = [];
+  for (let i = 0; i < moves.length; i++) {
+    try {
+      await maxl.addSegmentToQueue(moves[i]);
+    } catch (err) {
+      refused.push(`${i}:${(err as MaxlError).code}`);
+    }
+    dry.takeWhileFull(run);
+  }
+  dry.finish();
+  return refused;
+}
+
+describe('a dry run taking runs of final segments behind awaited single adds', () => {
+  it('locks, plans and records what one taking a segment at a time does, and refuses the same moves', async () => {
+    await fc.assert(
+      fc.asyncProperty(
+        fc.boolean(),
+        fc.boolean(),
+        fc.option(fc.integer({ min: 1, max: 8 })),
+        fc.integer({ min: 1, max: 10 }),
+        fc.array(moveArb, { minLength: 1, maxLength: 80 }),
+        async (corexy, listening, capacity, run, moves) => {
+          const c = config(corexy, capacity);
+          const single = machine(c, listening);
+          const perPoint = machine(c, !listening);
+          expect(await perPointInRuns(perPoint, moves, run)).toEqual(oneByOne(single, moves));
+          expect(queueOf(perPoint).transmittedEnd_us).toBe(queueOf(single).transmittedEnd_us);
+          expect(historyOf(perPoint)).toEqual(historyOf(single));
+        },
+      ),
+      { numRuns: 150 },
+    );
+  });
+});
 
 describe('the batch producer API', () => {
   it('queues, plans and records moves exactly as single appends, and refuses the same ones', () => {
