@@ -18,10 +18,11 @@
  *    there is room for a run of EXECUTOR_RUN (takeWhileFull(EXECUTOR_RUN)), as the
  *    device streamer (core/net/streamer.ts) tops a board's buffer up by a refill's
  *    worth of path, not one segment per tick; then the rest at the end. Locking a
- *    final segment changes no plan: the plan is the one a dry run taking one segment
- *    at a time makes, which durationRatio checks for both. (Taking one segment
- *    after each add instead, producer and executor alternate per point; the
- *    per-point loop then ran 1.2-1.3x slower per CPU second, the same plan.)
+ *    final segment changes no plan (core/trajectory/batchAppend.property.test.ts),
+ *    and durationRatio checks both plans against planPath's. (A dry run taking one
+ *    segment after each add, as this bench's per-point loop had before, makes
+ *    producer and executor alternate per point: the same plan, more time per point;
+ *    README, "planner".)
  *  - batch: planPath over the whole path.
  *
  * Figures, per path and per way (incremental = per point, incrementalBatch, planPath):

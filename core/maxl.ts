@@ -143,10 +143,8 @@ export class Maxl {
    * The batch form of addSegmentToQueue, for callers with many moves at hand (an
    * imported SVG or G-code file, a plotter job): appends moves[from], moves[from + 1],
    * … synchronously for as long as the queue has room, and returns the index of the
-   * first move not appended (moves.length when all were). At a lookahead deeper than
-   * the queue's capacity (a finely flattened curve) it may go on while fewer than
-   * capacity / 8 queued segments are final, where a single add would wait, so that
-   * the executor takes them as a run: the plan is the same. Each move is validated
+   * first move not appended (moves.length when all were): it has room exactly when
+   * a single add would not wait (queue.hasRoom()). Each move is validated
    * and queued exactly as addSegmentToQueue would queue it (the same segments, ids
    * and plan), without a promise or a receipt per move, which is most of the cost
    * of a fine path. A bad move throws a MaxlError whose field names it

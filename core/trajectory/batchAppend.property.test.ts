@@ -178,7 +178,7 @@ describe('the batch producer API', () => {
     );
   });
 
-  it('at a lookahead deeper than the capacity, queues a run of final segments more than a single add, and no more', () => {
+  it('at a lookahead deeper than the capacity, queues a run of final segments past braking depth, and no more, for single adds as for the batch', async () => {
     // 20 000 chords of 3 µm round a circle: braking from 250 mm/s needs ~3 500 of them.
     const r = (20_000 * 0.003) / (2 * Math.PI);
     const moves: Move[] = Array.from({ length: 20_000 }, (_, k) => {
@@ -186,17 +186,25 @@ describe('the batch producer API', () => {
       return { endPosition: [r * Math.cos(theta), r * Math.sin(theta)] };
     });
     const c: MaxlConfig = { motionAxes: ['x', 'y'], limits: LIMITS, queueCapacity: 512 };
-    const single = createMAXL(c, { initialPosition: [r, 0] });
-    const batch = createMAXL(c, { initialPosition: [r, 0] });
-    const qs = queueOf(single);
-    const qb = queueOf(batch);
-    const ds = new DryRun(qs);
-    const db = new DryRun(qb);
-    let deepestSingle = 0;
+    const [braking, single, batch] = [0, 1, 2].map(() => createMAXL(c, { initialPosition: [r, 0] }));
+    const [qr, qs, qb] = [braking, single, batch].map(queueOf);
+    const [dr, ds, db] = [qr, qs, qb].map((q) => new DryRun(q));
+    // Braking depth: an executor that takes every final segment past the capacity, so that none is held there.
+    let brakingDepth = 0;
     for (const m of moves) {
-      qs.append(m);
+      qr.append(m);
+      brakingDepth = Math.max(brakingDepth, qr.untransmittedCount);
+      while (qr.untransmittedCount >= qr.capacity && qr.frontIsFinal) dr.takeFront();
+    }
+    // Single adds, awaited, a dry run taking runs after each; the calls in which it took any segment.
+    let deepestSingle = 0;
+    let takingCalls = 0;
+    for (const m of moves) {
+      await single.addSegmentToQueue(m);
       deepestSingle = Math.max(deepestSingle, qs.untransmittedCount);
-      ds.takeWhileFull();
+      const before = ds.segments;
+      ds.takeWhileFull(64);
+      if (ds.segments > before) takingCalls++;
     }
     let deepestBatch = 0;
     let calls = 0;
@@ -205,15 +213,21 @@ describe('the batch producer API', () => {
       deepestBatch = Math.max(deepestBatch, qb.untransmittedCount);
       db.takeWhileFull(64);
     }
+    dr.finish();
     ds.finish();
     db.finish();
-    expect(deepestSingle).toBeGreaterThan(3000);
-    expect(deepestBatch).toBeGreaterThan(deepestSingle);
-    expect(deepestBatch).toBeLessThanOrEqual(deepestSingle + 512 / 8);
-    // Runs, not one move a call.
+    expect(brakingDepth).toBeGreaterThan(3000);
+    expect(deepestSingle).toBeGreaterThan(brakingDepth);
+    expect(deepestSingle).toBeLessThanOrEqual(brakingDepth + 512 / 8);
+    expect(deepestBatch).toBe(deepestSingle);
+    // Runs, not one segment (or one move) a call: producer and executor do not alternate per point.
+    expect(takingCalls).toBeLessThan(moves.length / 32);
     expect(calls).toBeLessThan(moves.length / 32);
-    expect(db.duration_s).toBe(ds.duration_s);
-    expect(historyOf(batch)).toEqual(historyOf(single));
+    // The same plan every way.
+    expect(ds.duration_s).toBe(dr.duration_s);
+    expect(db.duration_s).toBe(dr.duration_s);
+    expect(historyOf(single)).toEqual(historyOf(braking));
+    expect(historyOf(batch)).toEqual(historyOf(braking));
   });
 
   it('appends only while there is room, and returns where it stopped', () => {

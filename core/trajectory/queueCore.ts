@@ -62,6 +62,12 @@ export interface MoveReceipt {
  */
 export const MAX_LOOKAHEAD_SEGMENTS = 65_536;
 
+/**
+ * Past the capacity, the fraction of it that may be final segments before the queue
+ * has no room (hasRoom): the run an executor that waits for room takes at once.
+ */
+const RUN_FRACTION = 1 / 8;
+
 /** enqueueLine's answer for a zero-length move that sets no event: skipped, nothing queued. */
 const LINE_SKIPPED = 0;
 /** enqueueLine's answer for a zero-length move that sets events: nothing changed; the object path makes its 0-s dwell. */
@@ -138,20 +144,28 @@ export abstract class QueueCore {
 
   /**
    * Whether a producer may append now: while fewer than `capacity` segments are
-   * untransmitted, and beyond that for as long as the lookahead needs more path
-   * (none of them is final yet: the path known after the first is shorter than
-   * braking from the speed it may reach there; plan/lookahead.ts). So the depth of
-   * the lookahead is a braking distance, however short the segments, and an
-   * executor that waits for room locks only final segments: the plan is the one
-   * planPath makes of the whole path. Past `capacity` one producer at a time is let
-   * in (no slot promised yet), as each appended move may make the front final.
+   * untransmitted, and beyond that while fewer than capacity / 8 of them are final
+   * (RUN_FRACTION). Past the capacity the lookahead needs more path while none is
+   * final (the path known after the first is shorter than braking from the speed
+   * it may reach there; plan/lookahead.ts), so the depth of the lookahead is a
+   * braking distance, however short the segments, and an executor that waits for
+   * room locks only final segments: the plan is the one planPath makes of the whole
+   * path. On such a fine path each append finalises about one segment; were room
+   * to end at the first final one, a producer and an executor that waits for room
+   * would hand over one segment at a time, alternating per point (1.2–1.3× the
+   * time per point of the planner bench's fine circle, bench/planner.ts). So the
+   * queue takes capacity / 8 final segments more, which the executor then takes as
+   * a run. The plan is the same: more path known never changes a final plan, and
+   * the executor still locks only final segments. Past `capacity` one producer at
+   * a time is let in (no slot promised yet), as each appended move may make the
+   * front final. At a capacity below 8 this is room while none is final.
    * MAX_LOOKAHEAD_SEGMENTS bounds the memory on absurdly fine paths.
    */
   hasRoom(): boolean {
     const untransmitted = this.untransmitted + this.pending.size;
     const reserved = this.gate.reserved;
     if (untransmitted + reserved < this.capacity) return true;
-    return reserved === 0 && this.planner.needsMorePath && untransmitted < MAX_LOOKAHEAD_SEGMENTS;
+    return reserved === 0 && this.planner.plannedSize < this.capacity * RUN_FRACTION && untransmitted < MAX_LOOKAHEAD_SEGMENTS;
   }
 
   // --- appending ---
@@ -215,7 +229,7 @@ export abstract class QueueCore {
 
   /**
    * The batch producer's step: appends moves[from], moves[from + 1], … for as long as
-   * the queue has room for a run (hasRoomForRun, checked before each), and returns
+   * the queue has room (hasRoom, checked before each), and returns
    * the index of the first move not appended (moves.length when all were). Each move
    * is validated from the path's tail and appended exactly as append() would (the
    * same segments, ids and plan as a loop of single appends), without a receipt per
@@ -232,7 +246,7 @@ export abstract class QueueCore {
     // have copied each. Everything else takes the single-move path.
     let borrowed = false;
     try {
-      for (; i < moves.length && this.hasRoomForRun(); i++) {
+      for (; i < moves.length && this.hasRoom(); i++) {
         const move = moves[i];
         if (this.columnar && this.listeners.length === 0 && isPlainLine(this.config, move)) {
           const id = this.enqueueLine(move.endPosition, move.maxVelocity ?? Infinity, move.maxAcceleration ?? Infinity, NO_SPECS, NO_ACTUATORS, this.nextMoveId);
@@ -255,22 +269,6 @@ export abstract class QueueCore {
   /** Makes the tail position an array of the queue's own (a copy of one borrowed from a caller). */
   private ownTailPosition(): void {
     this.tail.position = this.tail.position.slice();
-  }
-
-  /**
-   * hasRoom(), or, at a lookahead deeper than the capacity, room for a run: while
-   * fewer than capacity / 8 untransmitted segments are final. Past the capacity the
-   * queue lets a producer in only while no segment is final, and on a fine path each
-   * append finalises about one, so a producer and an executor that waits for room
-   * would hand over one segment at a time; a batch producer may queue this many final
-   * segments more, so that the executor takes them as a run. The plan is the same
-   * (more path known never changes a final plan, and the executor still locks only
-   * final segments); the queue holds at most capacity / 8 segments more.
-   */
-  private hasRoomForRun(): boolean {
-    if (this.hasRoom()) return true;
-    const untransmitted = this.untransmitted + this.pending.size;
-    return this.gate.reserved === 0 && this.planner.plannedSize < this.capacity / 8 && untransmitted < MAX_LOOKAHEAD_SEGMENTS;
   }
 
   /** Validates moves[i] from the path's tail; a bad one throws with its index in the field (`moves[i].endPosition`). */
