@@ -45,8 +45,8 @@ export class DryRun {
    * after each add). With `chunk` > 1, once it had to take one, it goes on taking
    * while the front's plan is final (TrajectoryQueue.frontIsFinal) until the queue
    * has room for `chunk` more segments below its capacity: as a device streamer
-   * fills a board's buffer in runs, so that a batch producer (addSegmentsNow)
-   * appends runs of moves, not one at a time. Locking a final segment changes no
+   * fills a board's buffer in runs, so that a producer (single adds or
+   * addSegmentsNow) appends runs of moves, not one at a time. Locking a final segment changes no
    * plan, so the segments taken, and their plan, are the same for every chunk.
    */
   takeWhileFull(chunk = 1): void {
