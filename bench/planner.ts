@@ -45,7 +45,15 @@
  *  - perPoint: the same three through the awaited per-point addSegmentToQueue;
  *  - worstDurationRatio: the largest durationRatio;
  *  - worstPlanPathSpeedup: the smallest, over paths, of planPath's rate over the
- *    faster incremental rate (the batch API's).
+ *    faster incremental rate (the batch API's);
+ *  - perPoint.ceilingSegmentsPerSecond: the smallest, over paths, of
+ *    perPointCeiling.segmentsPerSecond, which is 1 / (1 / awaitOnly + 1 / batch):
+ *    the per-point rate if an awaited add cost no more than the batch API's whole
+ *    cost per segment plus the await of its receipt. awaitOnlySegmentsPerSecond is
+ *    the rate of the per-point loop with the add replaced by `await
+ *    Promise.resolve(receipt)` (a fresh receipt, no queue), the median over the same
+ *    runs. A per-point API that did the batch API's work per point and nothing more
+ *    would run at this rate: it cannot pass it unless the queue itself gets faster.
  *
  * Options: `--path NAME[,NAME…]` plans only the paths named (spiral, raster,
  * randomWalk, fineCircle), for profiling one path or comparing two trees quickly;
@@ -127,6 +135,22 @@ function incrementalBatch(maxl: ReturnType<typeof machineFor>, path: BenchPath, 
   return { seconds, cpuSeconds: cpuSecondsSince(c0), plannedDuration_s: dry.duration_s, segments: dry.segments };
 }
 
+/**
+ * The per-point loop with the add replaced by the least an awaited add can cost: the
+ * await of a resolved promise of a fresh receipt, with no queue behind it (and no
+ * move object made by the caller, so the ceiling it gives is if anything high).
+ * Nothing is planned: only its rate is used, for the per-point ceiling.
+ */
+async function awaitOnly(path: BenchPath): Promise<Run> {
+  const c0 = process.cpuUsage();
+  const t0 = performance.now();
+  for (let moveId = 0; moveId < path.points.length; moveId++) {
+    await Promise.resolve({ moveId, segmentIds: [moveId], skipped: false });
+  }
+  const seconds = (performance.now() - t0) / 1000;
+  return { seconds, cpuSeconds: cpuSecondsSince(c0), plannedDuration_s: 0, segments: path.points.length };
+}
+
 function batch(path: BenchPath): Run {
   const moves = path.points.map((end) => ({ end }));
   const c0 = process.cpuUsage();
@@ -187,6 +211,7 @@ function worstOf(all: Figures[]) {
 const results: Record<string, unknown> = {};
 const perPointFigures: Figures[] = [];
 const batchFigures: Figures[] = [];
+const ceilings: number[] = [];
 let worstDurationRatio = 0;
 let worstPlanPathSpeedup = Infinity;
 for (const path of selectedPaths()) {
@@ -197,8 +222,12 @@ for (const path of selectedPaths()) {
   const moves: Move[] = path.points.map((p) => ({ endPosition: p }));
   const inBatch = await measure(() => incrementalBatch(batchMaxl, path, moves));
   const plan = await measure(() => batch(path));
+  const awaits = await measure(() => awaitOnly(path));
   const [p, b, pp] = [figures(perPoint), figures(inBatch), figures(plan)];
+  const awaitOnlyRate = median(awaits.runs.map(rate));
+  const ceiling = Math.round(1 / (1 / awaitOnlyRate + 1 / b.segmentsPerSecond));
   perPointFigures.push(p);
+  ceilings.push(ceiling);
   batchFigures.push(b);
   const planned = plan.runs[0].plannedDuration_s;
   const durationRatio = Math.max(perPoint.runs[0].plannedDuration_s, inBatch.runs[0].plannedDuration_s) / planned;
@@ -210,13 +239,15 @@ for (const path of selectedPaths()) {
     segments: perPoint.runs[0].segments,
     incremental: p,
     incrementalBatch: b,
+    perPointCeiling: { awaitOnlySegmentsPerSecond: Math.round(awaitOnlyRate), segmentsPerSecond: ceiling },
     planPath: pp,
     durationRatio: +durationRatio.toFixed(7),
   };
   console.error(
     `${path.name}: incremental per point ${p.segmentsPerSecond} seg/s (cold ${p.coldSegmentsPerSecond}, per CPU second ${p.cpuSegmentsPerSecond}), ` +
       `batch ${b.segmentsPerSecond} seg/s (cold ${b.coldSegmentsPerSecond}, per CPU second ${b.cpuSegmentsPerSecond}), ` +
-      `planPath ${pp.segmentsPerSecond} seg/s, duration ratio ${durationRatio.toFixed(7)}`,
+      `planPath ${pp.segmentsPerSecond} seg/s, duration ratio ${durationRatio.toFixed(7)}; ` +
+      `await alone ${Math.round(awaitOnlyRate)} per s, per-point ceiling ${ceiling} seg/s`,
   );
 }
 const worstBatch = worstOf(batchFigures);
@@ -228,7 +259,7 @@ console.log(
       perPoint: 'await maxl.addSegmentToQueue(move), one per point',
     },
     ...worstBatch,
-    perPoint: worstOf(perPointFigures),
+    perPoint: { ...worstOf(perPointFigures), ceilingSegmentsPerSecond: Math.min(...ceilings) },
     target: 3_000_000,
     worstDurationRatio: +worstDurationRatio.toFixed(7),
     durationRatioTarget: 1.000001,
