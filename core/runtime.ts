@@ -129,6 +129,10 @@ export class Runtime {
   private readonly restarted = new Map<DeviceSession, number>();
   /** The last stop each session reported, so that a repeated STATUS is not reported again. */
   private readonly lastStop = new Map<DeviceSession, string>();
+  /** Set by end(); begin() stops at its next step. */
+  private ended = false;
+  /** Ends begin()'s clock-sync wait early (set while it waits). */
+  private wakeSleeper: (() => void) | null = null;
 
   constructor(host: RuntimeHost, options: RuntimeOptions) {
     this.host = host;
@@ -167,16 +171,35 @@ export class Runtime {
     for (const l of this.listeners) l(e);
   }
 
+  /**
+   * Opens the sessions, subscribes, syncs clocks and starts streaming. end() while
+   * this runs makes it reject at once with QUEUE_CLOSED, whatever step it was at
+   * (a hello, a subscription, the clock sync), with nothing it started left running.
+   */
   async begin(): Promise<DeviceInfo[]> {
     if (this.links.length === 0) throw new MaxlError('DEVICE_UNAVAILABLE', 'no links to open: connect a device or choose a simulated machine');
     checkLinks(this.links);
     this.createSessions();
-    const infos = await Promise.all(this.sessions.map((s) => s.open()));
-    await this.subscribeAndSync(infos);
-    if (this.options.warmUp) await this.warmUp(infos);
+    let infos: DeviceInfo[];
+    try {
+      infos = await Promise.all(this.sessions.map((s) => s.open()));
+      this.throwIfEnded();
+      await this.subscribeAndSync(infos);
+      this.throwIfEnded();
+      if (this.options.warmUp) await this.warmUp(infos);
+      this.throwIfEnded();
+    } catch (err) {
+      // end() closed the sessions under it: that, not what the closing broke, is why.
+      if (this.ended) throw endedBeforeBegun();
+      throw err;
+    }
     this.streamer = this.createStreamer(infos, new Map());
     this.streamer.start();
     return infos;
+  }
+
+  private throwIfEnded(): void {
+    if (this.ended) throw endedBeforeBegun();
   }
 
   /** One session per link, its events wired to this runtime. */
@@ -229,8 +252,24 @@ export class Runtime {
     // Let the clock models see enough exchanges for a rate before anything is timed.
     const sync = this.options.syncBeforeStart_us ?? 2_000_000;
     for (const s of this.sessions) s.pingBurst(sync + 1_000_000);
-    await this.scheduler.sleep(sync);
+    await this.sleepUnlessEnded(sync);
+    this.throwIfEnded();
     for (const s of this.sessions) this.emit({ type: 'device', device: s.label, state: 'open' });
+  }
+
+  /** Resolves after `delay_us`, or at once when end() is called (which may also stop the scheduler's timers). */
+  private sleepUnlessEnded(delay_us: number): Promise<void> {
+    return new Promise((resolve) => {
+      const timer = this.scheduler.after(delay_us, () => {
+        this.wakeSleeper = null;
+        resolve();
+      });
+      this.wakeSleeper = () => {
+        timer.cancel();
+        this.wakeSleeper = null;
+        resolve();
+      };
+    });
   }
 
   /** A dry run of the streaming path with these devices' slots, sending nothing (net/warmUp.ts). */
@@ -446,8 +485,10 @@ export class Runtime {
     await halts;
   }
 
-  /** Ends every session. */
+  /** Ends every session (and a begin() still connecting: it rejects with QUEUE_CLOSED). */
   async end(): Promise<void> {
+    this.ended = true;
+    this.wakeSleeper?.();
     this.streamer?.stop(new MaxlError('QUEUE_CLOSED', 'the session ended'));
     await Promise.all(this.sessions.map((s) => s.close()));
   }
@@ -584,4 +625,9 @@ export class Runtime {
       : 'Streaming stopped: every device brakes to rest on the path. Check the cable and power, then reconnect and resume the job.';
     this.emit({ type: 'error', error: new MaxlError('LINK_LOST', `${session.label}: ${reason}. ${after}`) });
   }
+}
+
+/** begin()'s error when end() was called before it finished. */
+function endedBeforeBegun(): MaxlError {
+  return new MaxlError('QUEUE_CLOSED', 'end() was called before begin() finished connecting: the devices were closed');
 }

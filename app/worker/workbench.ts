@@ -67,6 +67,9 @@ export class Workbench implements ToolContext {
   private openingPorts: Promise<void> = Promise.resolve();
   /** Restarts run one after another. */
   private restarting: Promise<void> = Promise.resolve();
+  /** Simulated machines chosen run one after another (choosePreset); the count names the newest. */
+  private switching: Promise<void> = Promise.resolve();
+  private presetChoices = 0;
   private readonly snapshots = new SnapshotBuilder();
   /** Tells the user when real boards' lead grew because the machine held the worker back. */
   private readonly leadWatch = new LeadWatch();
@@ -117,7 +120,7 @@ export class Workbench implements ToolContext {
         return;
       }
       case 'use-preset':
-        void this.usePreset(cmd.presetId, cmd.config);
+        void this.choosePreset(cmd.presetId, cmd.config);
         return;
       case 'serial-access':
         this.post({ type: 'serial-access', access: serialAccess() });
@@ -199,7 +202,21 @@ export class Workbench implements ToolContext {
 
   // --- devices ---
 
-  private async usePreset(id: string, config?: MachineConfig): Promise<void> {
+  /**
+   * A simulated machine chosen from the menu. Choices run one after another, and a
+   * newer one supersedes an older one that has not finished starting: a machine
+   * still connecting stops at once (its author ends, and begin() rejects), so a
+   * choice made while the page opens on the default machine does not wait out that
+   * machine's clock sync, nor run beside it.
+   */
+  private choosePreset(id: string, config?: MachineConfig): Promise<void> {
+    const choice = ++this.presetChoices;
+    if (this.phase === 'connecting') void this.endAuthor();
+    this.switching = this.switching.then(() => (choice === this.presetChoices ? this.usePreset(id, config, choice) : undefined));
+    return this.switching;
+  }
+
+  private async usePreset(id: string, config: MachineConfig | undefined, choice: number): Promise<void> {
     let base: MachineConfig;
     try {
       base = presetConfig(id);
@@ -208,6 +225,7 @@ export class Workbench implements ToolContext {
       return;
     }
     await this.closeDevices();
+    if (choice !== this.presetChoices) return;
     this.useScheduler(new PacedScheduler());
     this.presetId = id;
     this.config = config ?? base;
@@ -226,6 +244,8 @@ export class Workbench implements ToolContext {
       this.publish();
       return;
     }
+    // Superseded while it started: the next choice closes it.
+    if (choice !== this.presetChoices) return;
     await this.restart();
   }
 

@@ -354,6 +354,11 @@ export class DeviceSession implements StreamDevice {
     this.stopTimers();
     this.state = 'closed';
     this.probing = null;
+    // An open() still waiting for the hello fails now: its timeout timer is gone.
+    if (this.pendingHello) {
+      this.pendingHello.reject(new MaxlError('DEVICE_UNAVAILABLE', `${this.label}: the session was closed before the device said hello`));
+      this.pendingHello = null;
+    }
     for (const o of [...this.inFlight, ...this.waiting]) o.resolve({ ok: false, reason: 'UNKNOWN_MESSAGE', detail: 0, unsent: true });
     this.inFlight = [];
     this.waiting = [];
