@@ -137,7 +137,7 @@ beforeAll(async () => {
     {
       links: [link],
       scheduler: board.scheduler,
-      // Margins for a UART (README, "UART margins"), with slices long enough that
+      // Margins for a UART (README, "Machines": the streamer's margins on a UART), with slices long enough that
       // the lead fits the Uno's 10-segment queue.
       streamer: { minLead_us: 40_000, leadMargin_us: 40_000, startMargin_us: 30_000, slice_us: 30_000 },
     },
