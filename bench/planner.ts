@@ -47,20 +47,22 @@
  *  - worstPlanPathSpeedup: the smallest, over paths, of planPath's rate over the
  *    faster incremental rate (the batch API's);
  *  - perPoint.ceilingSegmentsPerSecond: the smallest, over paths, of
- *    perPointCeiling.segmentsPerSecond, which is 1 / (1 / awaitOnly + 1 / batch):
+ *    perPointCeiling.segmentsPerSecond, which is 1 / (1 / loopOnly + 1 / batch):
  *    the per-point rate if an awaited add cost no more than the batch API's whole
- *    cost per segment plus the await of its receipt. awaitOnlySegmentsPerSecond is
- *    the rate of the per-point loop with the add replaced by `await
- *    Promise.resolve(receipt)` (a fresh receipt, no queue), the median over the same
- *    runs. A per-point API that did the batch API's work per point and nothing more
- *    would run at this rate: it cannot pass it unless the queue itself gets faster.
+ *    cost per segment. loopOnlySegmentsPerSecond is the rate of the per-point loop
+ *    itself, with the add replaced by one that only answers (answerOnly: a resolved
+ *    promise of a fresh receipt, no queue): the same for…of, move object, await and
+ *    executor call (takeWhileFull, on a queue with nothing in it), the median over
+ *    the same runs. A per-point API that did the batch API's work per point and
+ *    nothing more would run at the ceiling: the per-point rate cannot pass it unless
+ *    the queue itself gets faster.
  *
  * Options: `--path NAME[,NAME…]` plans only the paths named (spiral, raster,
  * randomWalk, fineCircle), for profiling one path or comparing two trees quickly;
  * BENCH_RUNS (default 5) sets the timed runs per path.
  */
 import os from 'node:os';
-import { createMAXL, planPath, type Move } from '../core/index.ts';
+import { createMAXL, planPath, type Move, type MoveReceipt } from '../core/index.ts';
 import { queueOf } from '../core/maxl.ts';
 import { DryRun } from '../core/trajectory/dryRun.ts';
 import { benchPaths, fineCircle, BENCH_LIMITS, type BenchPath } from './paths.ts';
@@ -135,17 +137,24 @@ function incrementalBatch(maxl: ReturnType<typeof machineFor>, path: BenchPath, 
   return { seconds, cpuSeconds: cpuSecondsSince(c0), plannedDuration_s: dry.duration_s, segments: dry.segments };
 }
 
+/** An add that only answers: a resolved promise of a fresh receipt, with no queue behind it. */
+function answerOnly(move: Move, moveId: number): Promise<MoveReceipt> {
+  return Promise.resolve({ moveId, segmentIds: [moveId], skipped: 'dwell_s' in move });
+}
+
 /**
- * The per-point loop with the add replaced by the least an awaited add can cost: the
- * await of a resolved promise of a fresh receipt, with no queue behind it (and no
- * move object made by the caller, so the ceiling it gives is if anything high).
- * Nothing is planned: only its rate is used, for the per-point ceiling.
+ * The per-point loop (incremental() above) with its add replaced by answerOnly and
+ * its executor's queue empty (`idle`: takeWhileFull returns at its room check, as it
+ * does after most adds): what the loop itself costs a point. Nothing is planned;
+ * only its rate is used, for the per-point ceiling.
  */
-async function awaitOnly(path: BenchPath): Promise<Run> {
+async function loopOnly(path: BenchPath, idle: DryRun): Promise<Run> {
   const c0 = process.cpuUsage();
   const t0 = performance.now();
-  for (let moveId = 0; moveId < path.points.length; moveId++) {
-    await Promise.resolve({ moveId, segmentIds: [moveId], skipped: false });
+  let moveId = 0;
+  for (const p of path.points) {
+    await answerOnly({ endPosition: p }, moveId++);
+    idle.takeWhileFull(EXECUTOR_RUN);
   }
   const seconds = (performance.now() - t0) / 1000;
   return { seconds, cpuSeconds: cpuSecondsSince(c0), plannedDuration_s: 0, segments: path.points.length };
@@ -222,10 +231,11 @@ for (const path of selectedPaths()) {
   const moves: Move[] = path.points.map((p) => ({ endPosition: p }));
   const inBatch = await measure(() => incrementalBatch(batchMaxl, path, moves));
   const plan = await measure(() => batch(path));
-  const awaits = await measure(() => awaitOnly(path));
+  const idle = new DryRun(queueOf(machineFor(path)));
+  const loop = await measure(() => loopOnly(path, idle));
   const [p, b, pp] = [figures(perPoint), figures(inBatch), figures(plan)];
-  const awaitOnlyRate = median(awaits.runs.map(rate));
-  const ceiling = Math.round(1 / (1 / awaitOnlyRate + 1 / b.segmentsPerSecond));
+  const loopOnlyRate = median(loop.runs.map(rate));
+  const ceiling = Math.round(1 / (1 / loopOnlyRate + 1 / b.segmentsPerSecond));
   perPointFigures.push(p);
   ceilings.push(ceiling);
   batchFigures.push(b);
@@ -239,7 +249,7 @@ for (const path of selectedPaths()) {
     segments: perPoint.runs[0].segments,
     incremental: p,
     incrementalBatch: b,
-    perPointCeiling: { awaitOnlySegmentsPerSecond: Math.round(awaitOnlyRate), segmentsPerSecond: ceiling },
+    perPointCeiling: { loopOnlySegmentsPerSecond: Math.round(loopOnlyRate), segmentsPerSecond: ceiling },
     planPath: pp,
     durationRatio: +durationRatio.toFixed(7),
   };
@@ -247,7 +257,7 @@ for (const path of selectedPaths()) {
     `${path.name}: incremental per point ${p.segmentsPerSecond} seg/s (cold ${p.coldSegmentsPerSecond}, per CPU second ${p.cpuSegmentsPerSecond}), ` +
       `batch ${b.segmentsPerSecond} seg/s (cold ${b.coldSegmentsPerSecond}, per CPU second ${b.cpuSegmentsPerSecond}), ` +
       `planPath ${pp.segmentsPerSecond} seg/s, duration ratio ${durationRatio.toFixed(7)}; ` +
-      `await alone ${Math.round(awaitOnlyRate)} per s, per-point ceiling ${ceiling} seg/s`,
+      `the loop alone ${Math.round(loopOnlyRate)} per s, per-point ceiling ${ceiling} seg/s`,
   );
 }
 const worstBatch = worstOf(batchFigures);
