@@ -137,7 +137,7 @@ function incrementalBatch(maxl: ReturnType<typeof machineFor>, path: BenchPath, 
   return { seconds, cpuSeconds: cpuSecondsSince(c0), plannedDuration_s: dry.duration_s, segments: dry.segments };
 }
 
-/** An add that only answers: a resolved promise of a fresh receipt, with no queue behind it. */
+/** An add that only answers: a resolved promise of a fresh receipt, with no queue behind it (it reads the move, so the caller makes one as for a real add). */
 function answerOnly(move: Move, moveId: number): Promise<MoveReceipt> {
   return Promise.resolve({ moveId, segmentIds: [moveId], skipped: 'dwell_s' in move });
 }

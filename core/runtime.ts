@@ -183,23 +183,21 @@ export class Runtime {
     let infos: DeviceInfo[];
     try {
       infos = await Promise.all(this.sessions.map((s) => s.open()));
-      this.throwIfEnded();
+      // Throws QUEUE_CLOSED itself once end() cuts its clock sync short.
       await this.subscribeAndSync(infos);
-      this.throwIfEnded();
       if (this.options.warmUp) await this.warmUp(infos);
-      this.throwIfEnded();
     } catch (err) {
       // end() closed the sessions under it: that, not what the closing broke, is why.
-      if (this.ended) throw endedBeforeBegun();
-      throw err;
+      throw this.ended ? endedWhileConnecting() : err;
     }
+    this.throwIfEnded();
     this.streamer = this.createStreamer(infos, new Map());
     this.streamer.start();
     return infos;
   }
 
   private throwIfEnded(): void {
-    if (this.ended) throw endedBeforeBegun();
+    if (this.ended) throw endedWhileConnecting();
   }
 
   /** One session per link, its events wired to this runtime. */
@@ -627,7 +625,7 @@ export class Runtime {
   }
 }
 
-/** begin()'s error when end() was called before it finished. */
-function endedBeforeBegun(): MaxlError {
-  return new MaxlError('QUEUE_CLOSED', 'end() was called before begin() finished connecting: the devices were closed');
+/** begin()'s (or reconnect()'s) error when end() was called before it finished connecting. */
+function endedWhileConnecting(): MaxlError {
+  return new MaxlError('QUEUE_CLOSED', 'end() was called while connecting: the devices were closed');
 }
