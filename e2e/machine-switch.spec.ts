@@ -42,3 +42,20 @@ test('three machines chosen in quick succession: the last one connects, alone', 
   expect(simulated.at(-1)).toContain('cncShield');
   expect(await page.locator('[data-testid=log-entry][data-code=READY]').count()).toBe(1);
 });
+
+test('a machine chosen while the default one is still loading its firmware: only the chosen one starts', async ({ page, context }) => {
+  // Firmware that takes a while to arrive (a slow connection), so that the default
+  // machine is still starting when the next is chosen.
+  await context.route('**/firmware/**', async (route) => {
+    await new Promise((r) => setTimeout(r, 1500));
+    await route.continue();
+  });
+  await page.goto('/');
+  await expect(page.getByTestId('phase')).toHaveText('connecting');
+  await choose(page, 'blotPlotter');
+  await expect(page.getByTestId('machine-menu')).toContainText('blotPlotter');
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await expect(page.locator('[data-testid=log-entry][data-code=READY]').last()).toContainText('Ready: blot in sync');
+  await expect(page.getByTestId('device')).toHaveCount(1);
+  expect(await page.locator('[data-testid=log-entry].error').count()).toBe(0);
+});
