@@ -152,6 +152,39 @@ test('Add device: the worker opens the granted ports and streams to the boards i
 });
 
 /**
+ * A board added while the default simulated machine is still starting (its firmware
+ * served 1.5 s late, so the page is at "connecting" when the board is granted): the
+ * board replaces the simulated machine, as it does once that machine is ready. The
+ * machine changes run one after another, so the simulated machine that finishes
+ * loading afterwards does not start beside the board.
+ */
+test('a board added while the simulated machine still starts replaces it, alone', async ({ page, context }) => {
+  await installFake(page);
+  let firmwareServed = 0;
+  await context.route('**/firmware/**', async (route) => {
+    await new Promise((r) => setTimeout(r, 1500));
+    await route.continue();
+    firmwareServed++;
+  });
+  await page.goto('/');
+  await expect(page.getByTestId('phase')).toHaveText('connecting');
+  await page.getByTestId('machine-menu').click();
+  await page.getByTestId('add-device').click();
+  await expect(page.locator('[data-testid=log-entry][data-code=CONNECT]').filter({ hasText: 'the worker owns its streams' })).toHaveCount(1);
+  await expect(page.locator('[data-testid=log-entry][data-code=CONNECT]').filter({ hasText: 'Left the simulated machine' })).toHaveCount(1);
+  // The configuration kept from the light painter wants three boards: one answers, and the page says which are missing.
+  await expect(page.locator('[data-testid=log-entry][data-code=SUBSCRIPTION_MISMATCH]')).toContainText('device "motorB" is not connected', { timeout: 30_000 });
+  // Past the late firmware, and a second more: the simulated machine did not join the board.
+  await expect.poll(() => firmwareServed, { timeout: 10_000 }).toBeGreaterThan(0);
+  await page.waitForTimeout(1000);
+  const devices = page.getByTestId('device');
+  await expect(devices).toHaveCount(1);
+  await expect(devices.nth(0)).toHaveAttribute('data-name', 'motorA');
+  await expect(page.getByTestId('machine-menu')).toContainText('Boards');
+  expect((await truth(page)).opened).toEqual(['motorA']);
+});
+
+/**
  * The fallback for a browser whose workers reach no serial port: the page opens
  * the ports and transfers their streams, every byte crossing the page, with the
  * bridge's 80 ms of margin. Only its wiring is asserted here. Its streaming is the

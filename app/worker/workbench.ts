@@ -67,9 +67,13 @@ export class Workbench implements ToolContext {
   private openingPorts: Promise<void> = Promise.resolve();
   /** Restarts run one after another. */
   private restarting: Promise<void> = Promise.resolve();
-  /** Simulated machines chosen run one after another (choosePreset); the count names the newest. */
+  /**
+   * Machine changes (a simulated machine chosen, a board joining) run one after
+   * another; the count names the newest, so that a simulated machine superseded
+   * before it started does not start (choosePreset, joinBoard).
+   */
   private switching: Promise<void> = Promise.resolve();
-  private presetChoices = 0;
+  private machineChanges = 0;
   private readonly snapshots = new SnapshotBuilder();
   /** Tells the user when real boards' lead grew because the machine held the worker back. */
   private readonly leadWatch = new LeadWatch();
@@ -136,7 +140,7 @@ export class Workbench implements ToolContext {
           'BRIDGE',
           `${cmd.label}: this browser's workers cannot reach serial ports, so its bytes cross the page, and a busy page can hold them back: the machine streams with ${(BRIDGED_STREAMER.leadMargin_us ?? 0) / 1000} ms of margin.`,
         );
-        void this.addPort({ label: cmd.label, readable: cmd.readable, writable: cmd.writable, bytesPerSecond: cmd.bytesPerSecond, uartByteTime_us: cmd.uartByteTime_us }, null);
+        void this.joinBoard({ label: cmd.label, readable: cmd.readable, writable: cmd.writable, bytesPerSecond: cmd.bytesPerSecond, uartByteTime_us: cmd.uartByteTime_us }, null);
         return;
       case 'remove-device':
         void this.removeDevice(cmd.id);
@@ -210,10 +214,28 @@ export class Workbench implements ToolContext {
    * machine's clock sync, nor run beside it.
    */
   private choosePreset(id: string, config?: MachineConfig): Promise<void> {
-    const choice = ++this.presetChoices;
-    if (this.phase === 'connecting') void this.endAuthor();
-    this.switching = this.switching.then(() => (choice === this.presetChoices ? this.usePreset(id, config, choice) : undefined));
+    const choice = this.newMachineChange();
+    this.switching = this.switching.then(() => (choice === this.machineChanges ? this.usePreset(id, config, choice) : undefined));
     return this.switching;
+  }
+
+  /**
+   * A board joins (its port opened), after the machine changes before it, and
+   * superseding a simulated machine chosen but not started yet: so a board granted
+   * while the page still starts its default machine replaces that machine, as it
+   * does once the machine is ready, rather than running beside it. Boards are never
+   * superseded: each one added joins.
+   */
+  private joinBoard(link: OpenedPort, serialPort: SerialPortLike | null): Promise<void> {
+    this.newMachineChange();
+    this.switching = this.switching.then(() => this.addPort(link, serialPort));
+    return this.switching;
+  }
+
+  /** Counts a new machine change, and stops a machine still connecting at once (its begin() rejects), so the change need not wait out its clock sync. */
+  private newMachineChange(): number {
+    if (this.phase === 'connecting') void this.endAuthor();
+    return ++this.machineChanges;
   }
 
   private async usePreset(id: string, config: MachineConfig | undefined, choice: number): Promise<void> {
@@ -225,7 +247,7 @@ export class Workbench implements ToolContext {
       return;
     }
     await this.closeDevices();
-    if (choice !== this.presetChoices) return;
+    if (choice !== this.machineChanges) return;
     this.useScheduler(new PacedScheduler());
     this.presetId = id;
     this.config = config ?? base;
@@ -245,13 +267,13 @@ export class Workbench implements ToolContext {
       return;
     }
     // Superseded while it started: the next choice closes it.
-    if (choice !== this.presetChoices) return;
+    if (choice !== this.machineChanges) return;
     await this.restart();
   }
 
   private async openGrantedPort(api: PortApi, key: PortKey): Promise<void> {
     const opened = await this.devices.openGranted(api, key);
-    if (opened) await this.addPort(opened.link, opened.serialPort);
+    if (opened) await this.joinBoard(opened.link, opened.serialPort);
   }
 
   private async addPort(link: OpenedPort, serialPort: SerialPortLike | null): Promise<void> {
