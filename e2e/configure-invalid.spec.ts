@@ -48,3 +48,34 @@ test('invalid fields: every problem listed, Apply refused, nothing saved; Reset 
   await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
   await expect(page.getByTestId('limit-velocity')).toHaveValue('200');
 });
+
+/**
+ * Import JSON: a file the editor can show is imported as a draft, bad values and
+ * all, for Configure to list; one with a part of the wrong kind (a transform with
+ * no axes, subscriptions that are not a list) is refused, naming the part, and the
+ * draft is left as it was. Before, such a file was taken and the editor failed to
+ * draw it (an uncaught error; the fixture above fails the spec on one).
+ */
+test('Import JSON: a file of the wrong shape is refused, naming the part; bad values are imported to be fixed', async ({ page }) => {
+  await openWorkbench(page);
+  await page.getByTestId('tab-configure').click();
+  const file = (name: string, config: unknown) => ({ name, mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(config)) });
+  const imports = page.locator('[data-testid=log-entry][data-code=CONFIG_IMPORT]');
+
+  await page.getByTestId('config-import-file').setInputFiles(file('no-axes.json', { motionAxes: ['x', 'y'], limits: { maxVelocity: 100, maxAcceleration: 1000 }, transforms: [{ type: 'corexy' }] }));
+  await expect(imports.last()).toContainText('no-axes.json: The file is not a MAXL machine configuration: "transforms[0].from" must be a list of motion axis names. Nothing was imported.');
+  await page.getByTestId('config-import-file').setInputFiles(file('subs.json', { motionAxes: ['x', 'y'], limits: {}, subscriptions: 'none' }));
+  await expect(imports.last()).toContainText('subs.json: The file is not a MAXL machine configuration: "subscriptions" must be a list.');
+  // The draft is the applied configuration still.
+  await expect(page.getByTestId('limit-velocity')).toHaveValue('200');
+  await expect(page.getByTestId('config-problem')).toHaveCount(0);
+  await expect(page.getByTestId('config-revert')).toBeDisabled();
+
+  // Bad values in a file of the right shape come in, listed, for the user to fix before Apply.
+  await page.getByTestId('config-import-file').setInputFiles(file('values.json', { motionAxes: ['x', 'y'], limits: { maxVelocity: 'fast', maxAcceleration: 1000 }, softLimits: { x: ['a'] } }));
+  await expect(page.locator('[data-testid=log-entry][data-code=CONFIG]').last()).toContainText('Imported values.json: check it, then Apply.');
+  await expect(page.getByTestId('config-problem').and(page.locator('[data-field="limits.maxVelocity"]'))).toHaveCount(1);
+  await expect(page.getByTestId('config-problem').and(page.locator('[data-field="softLimits.x"]'))).toHaveCount(1);
+  await expect(page.getByTestId('config-apply')).toBeDisabled();
+  await expect(page.getByTestId('phase')).toHaveText('ready');
+});

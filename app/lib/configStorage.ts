@@ -3,6 +3,7 @@
  * for real boards, plus which machine was open last; and JSON export and import.
  */
 import type { MachineConfig } from '../worker/protocol.ts';
+import { configShapeProblem } from './configShape.ts';
 import { downloadText } from './download.ts';
 
 const KEY = 'maxl.workbench.v1';
@@ -57,7 +58,11 @@ export function exportConfig(config: MachineConfig, name: string): void {
   downloadText(JSON.stringify(config, null, 2), `${name}.maxl.json`, 'application/json');
 }
 
-/** Parses an imported file; throws with words a user can act on. */
+/**
+ * Parses an imported file; throws with words a user can act on, importing nothing,
+ * when it is not JSON or not a machine configuration the editor can show
+ * (configShape.ts). Bad values inside are imported: Configure lists them before Apply.
+ */
 export function parseConfig(text: string): MachineConfig {
   let value: unknown;
   try {
@@ -65,8 +70,10 @@ export function parseConfig(text: string): MachineConfig {
   } catch (err) {
     throw new Error(`The file is not JSON: ${(err as Error).message}`);
   }
-  if (value === null || typeof value !== 'object' || !Array.isArray((value as MachineConfig).motionAxes)) {
+  if (value === null || typeof value !== 'object' || Array.isArray(value) || !('motionAxes' in value) || !('limits' in value)) {
     throw new Error('The file is not a MAXL machine configuration: it needs at least "motionAxes" and "limits".');
   }
+  const shape = configShapeProblem(value as Record<string, unknown>);
+  if (shape) throw new Error(`The file is not a MAXL machine configuration: ${shape}. Nothing was imported.`);
   return value as MachineConfig;
 }
