@@ -60,3 +60,27 @@ test('a small job: progress, pause, resume, cancel', async ({ page }) => {
   await expect(page.locator('[data-testid=log-entry][data-code=DEVICE_REFUSED]')).toHaveCount(0);
   await expect(page.locator('[data-testid=log-entry][data-code=LINK_LOST]')).toHaveCount(0);
 });
+
+/**
+ * A job of tiny fast segments (2 000 000 in a 150 mm spiral, 24 µm each, at 200 mm/s):
+ * the devices' 64-segment queues cannot hold its braking distance, a buffer
+ * conflict (core/net/streamer.ts). The author brakes the machine to rest and
+ * streams no more, so the job ends, failed, with the reason, and the header says
+ * "stopped" with Re-arm; before, the job stayed "running" at its last count with its
+ * ETA frozen. Re-armed, a job at a sensible speed runs to its end.
+ */
+test('a buffer conflict ends the job and stops the machine, saying why; Re-arm runs the next job', async ({ page }) => {
+  await openWorkbench(page);
+  await startJob(page, { pattern: 'spiral', segments: 2_000_000, size: 150, speed: 200 });
+  await expect(page.locator('[data-testid=log-entry][data-code=BUFFER_CONFLICT]')).toHaveCount(1, { timeout: 30_000 });
+  await expect(page.getByTestId('job-progress')).toHaveAttribute('data-phase', 'failed');
+  await expect(page.locator('[data-testid=log-entry][data-code=JOB_FAILED]').last()).toContainText('a buffer conflict stopped the stream');
+  await expect(page.getByTestId('phase')).toHaveText('stopped');
+  await expect(page.getByTestId('phase')).toHaveAttribute('title', /buffer conflict: segment \d+/);
+  await expect(page.getByTestId('resume-job')).toHaveCount(0);
+
+  await page.getByTestId('rearm').click();
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await startJob(page, { pattern: 'spiral', segments: 200, size: 20, speed: 40 });
+  await expect(page.getByTestId('job-progress')).toHaveAttribute('data-phase', 'done', { timeout: 60_000 });
+});
