@@ -7,7 +7,9 @@
  * - a G-code file with G2/G3 and words the importer does not read: each is listed
  *   with its line number, and the plot completes;
  * - a malformed SVG is refused, naming the line, and the file before it stays;
- * - a G-code move the planner refuses (an F too slow) is said with its line, not plotted.
+ * - a G-code move the planner refuses (an F too slow) is said with its line, not plotted;
+ * - a setting emptied or set to 0 (scale, pen-down speed) is said by its field, with no
+ *   plot time left standing and Plot disabled until it is fixed.
  */
 import { readFileSync } from 'node:fs';
 import type { Page } from '@playwright/test';
@@ -141,4 +143,41 @@ test('a G-code move the planner refuses is said with the line of the file, and n
   await expect(error).toContainText('maxVelocity: must be at least 0.001 mm/s');
   await expect(error).toHaveAttribute('data-line', '3');
   await expect(page.getByTestId('file-plot')).toBeDisabled();
+});
+
+test('a setting emptied or set to 0 is said by its field, Plot waits, and fixing it clears the message', async ({ page }) => {
+  // (An error on the page, as the emptied scale once threw, fails the spec: support/test.ts.)
+  await useBlot(page);
+  await page.getByTestId('tab-plot-files').click();
+  await page.getByTestId('plot-file-input').setInputFiles(SVG_FIXTURE);
+  await expect(page.getByTestId('plot-time')).toHaveAttribute('data-value', /^\d/);
+  const set = async (testId: string, value: string) => {
+    await page.getByTestId(testId).fill(value);
+    await page.getByTestId(testId).dispatchEvent('change');
+  };
+  const error = page.getByTestId('file-error');
+
+  // An emptied scale once crashed the panel; a scale of 0 previewed a 0 × 0 mm drawing and let it be plotted.
+  await set('file-scale', '');
+  await expect(error).toContainText('Scale must be a number above 0');
+  await expect(error).toContainText('(it is empty)');
+  await expect(page.getByTestId('file-plot')).toBeDisabled();
+  await set('file-scale', '0');
+  await expect(error).toContainText('(it is 0)');
+  // No plot time of other settings is left standing.
+  await expect(page.getByTestId('plot-time')).toHaveCount(0);
+  await expect(page.getByTestId('file-plot')).toBeDisabled();
+  await set('file-scale', '1');
+  await expect(error).toHaveCount(0);
+  await expect(page.getByTestId('plot-time')).toHaveAttribute('data-value', /^\d/);
+  await expect(page.getByTestId('file-plot')).toBeEnabled();
+
+  // A pen-down speed of 0 once came back as the planner refusing "line 12" of the file, and stayed after the fix.
+  await set('file-draw-speed', '0');
+  await expect(error).toHaveText('“plot-shapes.svg” cannot be planned: Pen-down speed must be a speed of at least 0.001 mm/s (it is 0).');
+  await expect(error).toHaveAttribute('data-line', '');
+  await expect(page.getByTestId('file-plot')).toBeDisabled();
+  await set('file-draw-speed', '40');
+  await expect(error).toHaveCount(0);
+  await expect(page.getByTestId('file-plot')).toBeEnabled();
 });

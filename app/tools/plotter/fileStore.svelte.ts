@@ -31,7 +31,7 @@ export const DEFAULT_PLOT: PlotSettings = {
 export class PlotterFileStore {
   summary = $state.raw<FileSummary | null>(null);
   warnings = $state.raw<FileWarning[]>([]);
-  error = $state.raw<{ message: string; line: number | null } | null>(null);
+  error = $state.raw<{ message: string; line: number | null; stage: 'read' | 'plan' } | null>(null);
   layer = $state.raw<PreviewLayer | null>(null);
   stats = $state.raw<PreviewStats | null>(null);
   plotResult = $state.raw<{ started: boolean; planned_s: number | null; reason: string | null } | null>(null);
@@ -60,12 +60,16 @@ export class PlotterFileStore {
         break;
       case 'file-error':
         this.pendingArrangement = null;
-        this.error = { message: e.message, line: e.line };
+        this.error = { message: e.message, line: e.line, stage: e.stage };
+        // The loaded file's numbers no longer hold (its plot time was for other settings): none shown, no Plot.
+        if (e.stage === 'plan') this.stats = null;
         this.busy = false;
         break;
       case 'file-preview':
         this.layer = e.layer;
         this.stats = e.stats;
+        // Planned: what stopped the plan before is gone (an error about another file that was not loaded stays).
+        if (this.error?.stage === 'plan') this.error = null;
         break;
       case 'file-cleared':
         this.summary = null;
@@ -88,7 +92,7 @@ export class PlotterFileStore {
       text = await file.text();
     } catch (err) {
       this.busy = false;
-      this.error = { message: `“${file.name}” could not be read: ${(err as Error).message}`, line: null };
+      this.error = { message: `“${file.name}” could not be read: ${(err as Error).message}`, line: null, stage: 'read' };
       return;
     }
     // A new file starts at true size, centred, or where its coordinates say for G-code;
