@@ -104,3 +104,44 @@ test('a stroke drawn with the mouse: the machine follows before the pointer lift
   expect(hausdorff([[60, 110, 60, 125]], [ink2[1]])).toBeLessThanOrEqual(0.3);
   await screenshot(page, '21-plotter-stroke-outside-the-bed');
 });
+
+test('switching tab mid-stroke ends the stroke where the pointer left the bed: nothing drawn that was not drawn', async ({ page }) => {
+  // A second finger on a tablet, or the keyboard, can switch tabs while the pointer is still down.
+  test.setTimeout(90_000);
+  await openWorkbench(page);
+  await page.getByTestId('machine-menu').click();
+  await page.getByTestId('preset-blotPlotter').click();
+  await expect(page.locator('[data-testid=log-entry][data-code=SIM]').last()).toContainText('blotPlotter');
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await page.getByTestId('tab-plotter').click();
+  await expect(page.getByTestId('plotter-pen')).toContainText('pen');
+  const toPx = await bedMapping(page);
+
+  const stroke: Array<[number, number]> = Array.from({ length: 11 }, (_, k) => [20 + 3 * k, 100]);
+  const [sx, sy] = toPx(...stroke[0]);
+  await page.mouse.move(sx, sy);
+  await page.mouse.down();
+  for (const p of stroke.slice(1)) {
+    const [x, y] = toPx(...p);
+    await page.mouse.move(x, y);
+    await page.waitForTimeout(15);
+  }
+  // The tab changes under the pointer (a click from script: the mouse is still down on the bed).
+  await page.evaluate(() => (document.querySelector('[data-testid=tab-plot-files]') as HTMLElement).click());
+  await page.mouse.move(500, 300);
+  await page.mouse.up();
+
+  await page.getByTestId('tab-plotter').click();
+  await expect(page.getByTestId('plotter-status')).toHaveAttribute('data-active', 'false', { timeout: 30_000 });
+  // The hidden bed once mapped the lift to (5e8, 3e8) mm: the machine inked a line to the bed's edge, and the log
+  // said that 583095146.6 mm outside the bed were not drawn.
+  await expect(page.locator('[data-testid=log-entry][data-code=DRAW_OUTSIDE]')).toHaveCount(0);
+  const download = page.waitForEvent('download');
+  await page.getByTestId('plotter-save-drawn').click();
+  const ink = svgStrokes(await readFile(await (await download).path(), 'utf8'));
+  expect(ink).toHaveLength(1);
+  const error = hausdorff([stroke.flat()], ink);
+  console.log(`[draw] tab switched mid-stroke: ink vs the stroke drawn on the bed, Hausdorff ${error.toFixed(3)} mm`);
+  expect(error).toBeLessThanOrEqual(0.3);
+  await screenshot(page, '22-plotter-tab-switched-mid-stroke');
+});
