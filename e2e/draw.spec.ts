@@ -2,7 +2,9 @@
  * Live drawing on the simulated Blot plotter: a stroke drawn with the mouse on the
  * Plotter tab's bed. The machine starts drawing it before the pointer lifts, and
  * the simulated pen's ink (read back from the "Save as drawn" SVG download)
- * matches the stroke within 0.3 mm (Hausdorff), with no ink on the travel.
+ * matches the stroke within 0.3 mm (Hausdorff), with no ink on the travel. A tab
+ * switched mid-stroke ends the stroke at its last point on the bed: the ink matches
+ * what was drawn, with nothing towards the bed's edge.
  */
 import { readFile } from 'node:fs/promises';
 import type { Page } from '@playwright/test';
