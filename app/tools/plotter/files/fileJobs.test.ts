@@ -58,10 +58,11 @@ describe('FileJobs', () => {
     const preview = last('file-preview')!;
     expect(preview.stats.fits).toBe(true);
     expect(preview.stats.travelAfter_mm).toBeLessThan(preview.stats.travelBefore_mm);
-    expect(preview.layer.strokes).toHaveLength(4);
-    expect(preview.layer.travel).toHaveLength(4);
+    expect(preview.layer.strokes.ends).toHaveLength(4);
+    expect(preview.layer.strokes.ends[3]).toBe(preview.layer.strokes.xy.length / 2);
+    expect(preview.layer.travel).toHaveLength(4 * 4);
     // The first travel starts where the pen is.
-    expect(Array.from(preview.layer.travel[0].slice(0, 2))).toEqual([7, 3]);
+    expect(Array.from(preview.layer.travel.slice(0, 2))).toEqual([7, 3]);
 
     files.handle({ tool: 'plotter', type: 'file-plot' });
     expect(jobs).toHaveLength(1);

@@ -19,7 +19,7 @@ import { importGcode } from './gcodeImport.ts';
 import { mergePaths, sortPaths } from './ordering.ts';
 import { boundsOf, FileImportError, lineOfSegment, pathLength, travelLength, type Drawing, type PlotPath } from './paths.ts';
 import { describeSource, plotJobMoves, plotTime, type MoveSource } from './plotJob.ts';
-import { layerBuffers, travelLines, type PreviewLayer } from './previewLayer.ts';
+import { layerBuffers, packLines, travelLines, type PreviewLayer } from './previewLayer.ts';
 import type { FileCommand, FileEvent, FileKind, ImportSettings, PlotSettings, PreviewStats } from './protocol.ts';
 import { settingsProblems } from './settingsCheck.ts';
 import { importSvg } from './svgImport.ts';
@@ -267,7 +267,7 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
       notes,
     };
     const layer: PreviewLayer = {
-      strokes: ordered.map((p) => p.points.slice()),
+      strokes: packLines(ordered),
       travel: travelLines(ordered, from),
       travelBefore: travelLines(fileOrder, from),
       area,
