@@ -10,8 +10,8 @@
  * - a G-code move the planner refuses (an F too slow) is said with its line, not plotted;
  * - a setting emptied or set to 0 (scale, pen-down speed) is said by its field, with no
  *   plot time left standing and Plot disabled until it is fixed;
- * - a file of 20 000 paths: said while read and planned, the page's longest task under
- *   a second (it froze 1.3-2 s before), and the plot runs.
+ * - a file of 20 000 paths: said while read and planned, previewed on one canvas (it
+ *   was 20 000 SVG elements, the page frozen 1.3-2 s at each plan), and the plot runs.
  */
 import { readFileSync } from 'node:fs';
 import type { Page } from '@playwright/test';
@@ -226,10 +226,13 @@ test('a file of 20 000 short paths: said while it is read and planned, the page 
   await screenshot(page, 'plot-files-dense-preview');
   const tasks = await longTasks();
   const longest = Math.max(0, ...tasks);
-  console.log(`[plot-files] 20 000 paths: ${tasks.length} main-thread tasks over 50 ms while it was read, planned, re-planned and shown; the longest ${longest.toFixed(0)} ms`);
-  // The preview once made 60 000 typed arrays and 20 000 SVG elements: 1.3-2 s frozen at each plan, 1.9 s for
-  // the file-order travel. Now the page's longest task stays well under a second, even on a busy machine.
-  expect(longest).toBeLessThan(1000);
+  console.log(`[plot-files] 20 000 paths: ${tasks.length} main-thread tasks over 50 ms while it was read, planned, re-planned and shown (${tasks.map((t) => t.toFixed(0)).join(', ')} ms); the longest ${longest.toFixed(0)} ms`);
+  // The preview once made 60 000 typed arrays and 20 000 SVG elements per plan: the page froze 1.3-2 s at each
+  // plan (more on a busy machine), and 1.9 s to show the file-order travel. Now it is one canvas, whatever the
+  // file; the longest task (150-400 ms here, 700 ms with both cores busy; logged above) is only guarded coarsely,
+  // as a figure measured while others compile is noisy.
+  await expect(page.getByTestId('plot-files').locator('svg, svg *')).toHaveCount(0);
+  expect(longest).toBeLessThan(2000);
 
   // It plots: the job runs through its first paths; then it is cancelled (the whole takes 1 h 48 min).
   await page.getByTestId('file-plot').click();
