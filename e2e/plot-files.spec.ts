@@ -11,7 +11,9 @@
  * - a setting emptied or set to 0 (scale, pen-down speed) is said by its field, with no
  *   plot time left standing and Plot disabled until it is fixed;
  * - a file of 20 000 paths: said while read and planned, previewed on one canvas (it
- *   was 20 000 SVG elements, the page frozen 1.3-2 s at each plan), and the plot runs.
+ *   was 20 000 SVG elements, the page frozen 1.3-2 s at each plan), and the plot runs;
+ * - a G-code file with the pen Z0 down, Z5 up: refused with its heights, the Z threshold
+ *   set with no file loaded, and it loads.
  */
 import { readFileSync } from 'node:fs';
 import type { Page } from '@playwright/test';
@@ -241,4 +243,21 @@ test('a file of 20 000 short paths: said while it is read and planned, the page 
   await expect.poll(async () => Number(await progress.getAttribute('data-done')), { timeout: 30_000 }).toBeGreaterThan(100);
   await page.getByTestId('job-cancel').click();
   await expect(progress).toHaveAttribute('data-phase', /cancelled|done/, { timeout: 30_000 });
+});
+
+test('a G-code file whose pen is Z0 down, Z5 up: refused with the heights it uses, the threshold set with no file loaded, and it loads', async ({ page }) => {
+  await useBlot(page);
+  await page.getByTestId('tab-plot-files').click();
+  const file = { name: 'z-pen.gcode', mimeType: 'text/plain', buffer: Buffer.from('G21\nG90\nG0 Z5\nG0 X10 Y10\nG1 Z0 F600\nG1 X40 Y10\nG1 X40 Y30\nG0 Z5\nG0 X0 Y0\n') };
+  await page.getByTestId('plot-file-input').setInputFiles(file);
+  await expect(page.getByTestId('file-error')).toContainText('no move with Z below 0 mm (its Z goes from 0 to 5 mm: set Import → Z threshold');
+  await expect(page.getByTestId('file-summary')).toHaveCount(0);
+  // The setting the message names is there with no file loaded (it once showed only once a G-code file had loaded).
+  await page.getByTestId('file-z-threshold').fill('2.5');
+  await page.getByTestId('file-z-threshold').dispatchEvent('change');
+  await page.getByTestId('plot-file-input').setInputFiles(file);
+  await expect(page.getByTestId('file-summary')).toHaveAttribute('data-paths', '1');
+  await expect(page.getByTestId('file-error')).toHaveCount(0);
+  await expect(page.getByTestId('file-size')).toHaveText('30.0 × 20.0 mm');
+  await expect(page.getByTestId('file-plot')).toBeEnabled();
 });
