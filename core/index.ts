@@ -25,7 +25,7 @@ export type {
   TrackKind,
 } from './config/types.ts';
 export type { Move, LinearMove, DwellMove } from './trajectory/moves.ts';
-export { isDwell, MAX_DWELL_S } from './trajectory/moves.ts';
+export { isDwell, MAX_DWELL_S, MIN_SPEED } from './trajectory/moves.ts';
 export type { MoveEvents, EvaluatorState, EventEvaluatorSpec, EventTrack } from './trajectory/events.ts';
 // The trajectory as apps read it (maxl.queue, maxl.history): read-only views. Maxl authors it.
 export type { MoveReceipt } from './trajectory/queue.ts';

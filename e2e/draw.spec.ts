@@ -2,7 +2,10 @@
  * Live drawing on the simulated Blot plotter: a stroke drawn with the mouse on the
  * Plotter tab's bed. The machine starts drawing it before the pointer lifts, and
  * the simulated pen's ink (read back from the "Save as drawn" SVG download)
- * matches the stroke within 0.3 mm (Hausdorff), with no ink on the travel.
+ * matches the stroke within 0.3 mm (Hausdorff), with no ink on the travel. A tab
+ * switched mid-stroke ends the stroke at its last point on the bed: the ink matches
+ * what was drawn, with nothing towards the bed's edge. A stroke drawn while a file
+ * plots is refused: said beside the bed, and kept whole on it as not drawn.
  */
 import { readFile } from 'node:fs/promises';
 import type { Page } from '@playwright/test';
@@ -103,4 +106,91 @@ test('a stroke drawn with the mouse: the machine follows before the pointer lift
   expect(ink2).toHaveLength(2);
   expect(hausdorff([[60, 110, 60, 125]], [ink2[1]])).toBeLessThanOrEqual(0.3);
   await screenshot(page, '21-plotter-stroke-outside-the-bed');
+});
+
+test('switching tab mid-stroke ends the stroke where the pointer left the bed: nothing drawn that was not drawn', async ({ page }) => {
+  // A second finger on a tablet, or the keyboard, can switch tabs while the pointer is still down.
+  test.setTimeout(90_000);
+  await openWorkbench(page);
+  await page.getByTestId('machine-menu').click();
+  await page.getByTestId('preset-blotPlotter').click();
+  await expect(page.locator('[data-testid=log-entry][data-code=SIM]').last()).toContainText('blotPlotter');
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await page.getByTestId('tab-plotter').click();
+  await expect(page.getByTestId('plotter-pen')).toContainText('pen');
+  const toPx = await bedMapping(page);
+
+  const stroke: Array<[number, number]> = Array.from({ length: 11 }, (_, k) => [20 + 3 * k, 100]);
+  const [sx, sy] = toPx(...stroke[0]);
+  await page.mouse.move(sx, sy);
+  await page.mouse.down();
+  for (const p of stroke.slice(1)) {
+    const [x, y] = toPx(...p);
+    await page.mouse.move(x, y);
+    await page.waitForTimeout(15);
+  }
+  // The tab changes under the pointer (a click from script: the mouse is still down on the bed).
+  await page.evaluate(() => (document.querySelector('[data-testid=tab-plot-files]') as HTMLElement).click());
+  await page.mouse.move(500, 300);
+  await page.mouse.up();
+
+  await page.getByTestId('tab-plotter').click();
+  await expect(page.getByTestId('plotter-status')).toHaveAttribute('data-active', 'false', { timeout: 30_000 });
+  // The hidden bed once mapped the lift to (5e8, 3e8) mm: the machine inked a line to the bed's edge, and the log
+  // said that 583095146.6 mm outside the bed were not drawn.
+  await expect(page.locator('[data-testid=log-entry][data-code=DRAW_OUTSIDE]')).toHaveCount(0);
+  const download = page.waitForEvent('download');
+  await page.getByTestId('plotter-save-drawn').click();
+  const ink = svgStrokes(await readFile(await (await download).path(), 'utf8'));
+  expect(ink).toHaveLength(1);
+  const error = hausdorff([stroke.flat()], ink);
+  console.log(`[draw] tab switched mid-stroke: ink vs the stroke drawn on the bed, Hausdorff ${error.toFixed(3)} mm`);
+  expect(error).toBeLessThanOrEqual(0.3);
+  await screenshot(page, '22-plotter-tab-switched-mid-stroke');
+});
+
+test('a stroke drawn while a file plots is refused, said beside the bed, and kept whole on it as not drawn', async ({ page }) => {
+  test.setTimeout(90_000);
+  await openWorkbench(page);
+  await page.getByTestId('machine-menu').click();
+  await page.getByTestId('preset-blotPlotter').click();
+  await expect(page.locator('[data-testid=log-entry][data-code=SIM]').last()).toContainText('blotPlotter');
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await page.getByTestId('tab-plot-files').click();
+  await page.getByTestId('plot-file-input').setInputFiles('e2e/fixtures/plot-shapes.svg');
+  await expect(page.getByTestId('file-plot')).toBeEnabled();
+  await page.getByTestId('file-plot').click();
+  await expect(page.getByTestId('job-progress')).toHaveAttribute('data-phase', 'running');
+
+  await page.getByTestId('tab-plotter').click();
+  // Not "Idle: draw a stroke", as it said while the plot ran.
+  await expect(page.getByTestId('plotter-status')).toContainText('A job runs (“plot-shapes.svg”): a stroke is refused until it ends');
+  const toPx = await bedMapping(page);
+  const stroke: Array<[number, number]> = Array.from({ length: 16 }, (_, k) => [20 + 2 * k, 100]);
+  const [sx, sy] = toPx(...stroke[0]);
+  await page.mouse.move(sx, sy);
+  await page.mouse.down();
+  for (const p of stroke.slice(1)) {
+    const [x, y] = toPx(...p);
+    await page.mouse.move(x, y);
+    await page.waitForTimeout(15);
+  }
+  await page.mouse.up();
+  // The page once dropped the stroke at the refusal (a grey dot stayed on the bed) and said nothing beside it;
+  // only the log, below, named the job.
+  const refused = page.getByTestId('plotter-refused');
+  await expect(refused).toContainText(/^Stroke \d+ was not drawn: the machine is not ready, or a job, a jog or another tool moves it/);
+  await expect(refused).toHaveAttribute('data-points', String(stroke.length + 1));
+  await expect(page.locator('[data-testid=log-entry][data-code=MACHINE_BUSY]').last()).toContainText('a job runs');
+  await screenshot(page, '23-plotter-stroke-refused-during-a-plot');
+  await expect(page.getByTestId('job-progress')).toHaveAttribute('data-phase', 'done', { timeout: 60_000 });
+  // The next stroke is drawn, and the note goes.
+  const [ax, ay] = toPx(30, 110);
+  await page.mouse.move(ax, ay);
+  await page.mouse.down();
+  const [bx, by] = toPx(50, 110);
+  await page.mouse.move(bx, by, { steps: 5 });
+  await page.mouse.up();
+  await expect(refused).toHaveCount(0);
+  await expect(page.getByTestId('plotter-status')).toHaveAttribute('data-active', 'false', { timeout: 30_000 });
 });

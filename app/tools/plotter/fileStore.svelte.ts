@@ -31,14 +31,18 @@ export const DEFAULT_PLOT: PlotSettings = {
 export class PlotterFileStore {
   summary = $state.raw<FileSummary | null>(null);
   warnings = $state.raw<FileWarning[]>([]);
-  error = $state.raw<{ message: string; line: number | null } | null>(null);
+  error = $state.raw<{ message: string; line: number | null; stage: 'read' | 'plan' } | null>(null);
   layer = $state.raw<PreviewLayer | null>(null);
   stats = $state.raw<PreviewStats | null>(null);
   plotResult = $state.raw<{ started: boolean; planned_s: number | null; reason: string | null } | null>(null);
   importSettings = $state<ImportSettings>({ ...DEFAULT_IMPORT });
   plotSettings = $state<PlotSettings>({ ...DEFAULT_PLOT, arrangement: { ...DEFAULT_ARRANGEMENT } });
-  /** A file is being read or sent. */
-  busy = $state(false);
+  /**
+   * What the worker is doing for the panel, said while it works (a file of 20 000
+   * paths takes seconds to read, order and time): reading a file (its name), or
+   * planning the one loaded; null when idle.
+   */
+  working = $state.raw<{ what: 'reading' | 'planning'; name: string } | null>(null);
   private pendingArrangement: Arrangement | null = null;
 
   constructor(private readonly wb: WorkbenchStore) {
@@ -56,18 +60,25 @@ export class PlotterFileStore {
         this.summary = e.summary;
         this.warnings = e.warnings;
         this.error = null;
-        this.busy = false;
+        // Read; the worker orders and times it next.
+        this.working = { what: 'planning', name: e.summary.name };
         break;
       case 'file-error':
         this.pendingArrangement = null;
-        this.error = { message: e.message, line: e.line };
-        this.busy = false;
+        this.error = { message: e.message, line: e.line, stage: e.stage };
+        // The loaded file's numbers no longer hold (its plot time was for other settings): none shown, no Plot.
+        if (e.stage === 'plan') this.stats = null;
+        this.working = null;
         break;
       case 'file-preview':
         this.layer = e.layer;
         this.stats = e.stats;
+        // Planned: what stopped the plan before is gone (an error about another file that was not loaded stays).
+        if (this.error?.stage === 'plan') this.error = null;
+        this.working = null;
         break;
       case 'file-cleared':
+        this.working = null;
         this.summary = null;
         this.warnings = [];
         this.layer = null;
@@ -81,14 +92,14 @@ export class PlotterFileStore {
   }
 
   async load(file: File): Promise<void> {
-    this.busy = true;
+    this.working = { what: 'reading', name: file.name };
     this.plotResult = null;
     let text: string;
     try {
       text = await file.text();
     } catch (err) {
-      this.busy = false;
-      this.error = { message: `“${file.name}” could not be read: ${(err as Error).message}`, line: null };
+      this.working = null;
+      this.error = { message: `“${file.name}” could not be read: ${(err as Error).message}`, line: null, stage: 'read' };
       return;
     }
     // A new file starts at true size, centred, or where its coordinates say for G-code;
@@ -101,6 +112,7 @@ export class PlotterFileStore {
   /** Sends the settings as they are now: the worker re-reads or re-plans. */
   update(): void {
     if (!this.summary) return;
+    this.working = { what: 'planning', name: this.summary.name };
     this.wb.send({ tool: 'plotter', type: 'file-settings', import: this.importNow(), plot: this.plotNow() });
   }
 

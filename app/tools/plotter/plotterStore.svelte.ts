@@ -36,6 +36,8 @@ export class PlotterStore {
   strokes: PageStroke[] = [];
   /** The simulated pen's ink, x, y pairs per pen stroke. */
   ink: number[][] = [];
+  /** The last stroke the worker refused, while no stroke has started since: the page says so beside the bed. */
+  refused = $state.raw<{ id: number; reason: string; points: number } | null>(null);
   /** The import module's preview on the bed (IMPORT: set by the import panel): pen-down polylines and pen-up travel, x, y pairs. */
   preview = $state.raw<{ strokes: ArrayLike<number>[]; travel: ArrayLike<number>[] } | null>(null);
   private nextId = 1;
@@ -56,6 +58,7 @@ export class PlotterStore {
   /** The pointer went down at (x, y) mm; `t` is the event's epoch ms. */
   strokeStart(x: number, y: number, t: number): void {
     if (this.current) this.strokeEnd();
+    this.refused = null;
     const s: PageStroke = { id: this.nextId++, xy: [x, y], done: -1, refused: false };
     this.current = s;
     this.strokes.push(s);
@@ -76,6 +79,12 @@ export class PlotterStore {
   flush(): void {
     const s = this.current;
     if (!s || this.pending.length === 0) return;
+    if (s.refused) {
+      // Shown on the bed as not drawn, whole, as the hand drew it; nothing of it goes to the worker.
+      this.pending = [];
+      this.noteRefused(s);
+      return;
+    }
     const points = Float64Array.from(this.pending);
     this.pending = [];
     this.send({ tool: 'plotter', type: 'draw-points', id: s.id, points }, [points.buffer]);
@@ -87,7 +96,12 @@ export class PlotterStore {
     if (!s) return;
     this.flush();
     this.current = null;
-    this.send({ tool: 'plotter', type: 'draw-end', id: s.id });
+    if (!s.refused) this.send({ tool: 'plotter', type: 'draw-end', id: s.id });
+  }
+
+  private noteRefused(s: PageStroke): void {
+    if (this.refused?.id === s.id) this.refused = { ...this.refused, points: s.xy.length / 2 };
+    this.version++;
   }
 
   get drawing(): boolean {
@@ -130,9 +144,10 @@ export class PlotterStore {
         this.applyStatus(e.status);
         break;
       case 'stroke-refused': {
+        // The stroke under way stays the pointer's: the rest of it is still shown (as not drawn), not sent.
         const s = this.strokes.find((x) => x.id === e.id);
         if (s) s.refused = true;
-        if (this.current?.id === e.id) this.current = null;
+        this.refused = { id: e.id, reason: e.reason, points: s ? s.xy.length / 2 : 0 };
         this.version++;
         break;
       }

@@ -58,10 +58,11 @@ describe('FileJobs', () => {
     const preview = last('file-preview')!;
     expect(preview.stats.fits).toBe(true);
     expect(preview.stats.travelAfter_mm).toBeLessThan(preview.stats.travelBefore_mm);
-    expect(preview.layer.strokes).toHaveLength(4);
-    expect(preview.layer.travel).toHaveLength(4);
+    expect(preview.layer.strokes.ends).toHaveLength(4);
+    expect(preview.layer.strokes.ends[3]).toBe(preview.layer.strokes.xy.length / 2);
+    expect(preview.layer.travel).toHaveLength(4 * 4);
     // The first travel starts where the pen is.
-    expect(Array.from(preview.layer.travel[0].slice(0, 2))).toEqual([7, 3]);
+    expect(Array.from(preview.layer.travel.slice(0, 2))).toEqual([7, 3]);
 
     files.handle({ tool: 'plotter', type: 'file-plot' });
     expect(jobs).toHaveLength(1);
@@ -94,6 +95,37 @@ describe('FileJobs', () => {
     expect(last('file-plot')).toMatchObject({ started: false });
     files.handle({ tool: 'plotter', type: 'file-settings', import: IMPORT, plot: { ...big, arrangement: { ...big.arrangement, fit: true } } });
     expect(last('file-preview')?.stats.fits).toBe(true);
+    files.handle({ tool: 'plotter', type: 'file-plot' });
+    expect(jobs).toHaveLength(1);
+  });
+
+  it('bad settings (a scale of 0, an emptied speed) are said by their field, nothing is planned or plotted, and fixing them plans again', () => {
+    const { files, jobs, posted, last } = setup();
+    files.handle({ tool: 'plotter', type: 'file-load', name: 'plot-shapes.svg', text: svg, import: IMPORT, plot: PLOT });
+    const previews = () => posted.filter((e) => e.type === 'file-preview').length;
+    const before = previews();
+    // A scale of 0 once collapsed the drawing onto one point, previewed as 0 × 0 mm and plottable.
+    files.handle({ tool: 'plotter', type: 'file-settings', import: IMPORT, plot: { ...PLOT, arrangement: { ...DEFAULT_ARRANGEMENT, scale: 0 } } });
+    expect(last('file-error')).toMatchObject({ stage: 'plan', name: 'plot-shapes.svg', line: null });
+    expect(last('file-error')?.message).toMatch(/^“plot-shapes.svg” cannot be planned: Scale must be a number above 0 .*\(it is 0\)\.$/);
+    expect(previews()).toBe(before);
+    files.handle({ tool: 'plotter', type: 'file-plot' });
+    expect(jobs).toHaveLength(0);
+    expect(last('file-plot')).toMatchObject({ started: false });
+    expect(last('file-plot')?.reason).toMatch(/Scale must be/);
+    // An emptied field arrives as null: once the planner's refusal of "line 12" of the file.
+    files.handle({ tool: 'plotter', type: 'file-settings', import: IMPORT, plot: { ...PLOT, drawSpeed: null as unknown as number } });
+    expect(last('file-error')?.message).toBe('“plot-shapes.svg” cannot be planned: Pen-down speed must be a speed of at least 0.001 mm/s (it is empty).');
+    expect(last('file-error')?.line).toBeNull();
+    files.handle({ tool: 'plotter', type: 'file-settings', import: { ...IMPORT, chordTolerance_mm: 0 }, plot: PLOT });
+    expect(last('file-error')?.message).toMatch(/Chord tolerance must be a number of mm above 0 \(it is 0\)/);
+    expect(previews()).toBe(before);
+    files.handle({ tool: 'plotter', type: 'file-plot' });
+    expect(jobs).toHaveLength(0);
+    // Fixed: planned and plottable again.
+    files.handle({ tool: 'plotter', type: 'file-settings', import: IMPORT, plot: PLOT });
+    expect(previews()).toBe(before + 1);
+    expect(last('file-preview')?.stats.width_mm).toBeGreaterThan(30);
     files.handle({ tool: 'plotter', type: 'file-plot' });
     expect(jobs).toHaveLength(1);
   });

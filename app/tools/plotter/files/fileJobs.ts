@@ -19,8 +19,9 @@ import { importGcode } from './gcodeImport.ts';
 import { mergePaths, sortPaths } from './ordering.ts';
 import { boundsOf, FileImportError, lineOfSegment, pathLength, travelLength, type Drawing, type PlotPath } from './paths.ts';
 import { describeSource, plotJobMoves, plotTime, type MoveSource } from './plotJob.ts';
-import { layerBuffers, travelLines, type PreviewLayer } from './previewLayer.ts';
+import { layerBuffers, packLines, travelLines, type PreviewLayer } from './previewLayer.ts';
 import type { FileCommand, FileEvent, FileKind, ImportSettings, PlotSettings, PreviewStats } from './protocol.ts';
+import { settingsProblems } from './settingsCheck.ts';
 import { importSvg } from './svgImport.ts';
 
 /** The plan of the current file on the current machine. */
@@ -54,6 +55,8 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
   private importSettings: ImportSettings | null = null;
   private plotSettings: PlotSettings | null = null;
   private plan: Plan | null = null;
+  /** What is wrong with the settings last given (settingsCheck.ts); no plan while there is something. */
+  private settingsProblem: string | null = null;
 
   constructor(private readonly ctx: ToolContext) {}
 
@@ -63,6 +66,9 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
         this.load(cmd.name, cmd.text, cmd.import, cmd.plot);
         return;
       case 'file-settings': {
+        // Bad settings: said, and no plan (nor plot) until they are fixed; the drawing stays as read.
+        this.plotSettings = cmd.plot;
+        if (this.refusedSettings(cmd.import, cmd.plot)) return;
         const reread = this.drawing !== null && JSON.stringify(cmd.import) !== JSON.stringify(this.importSettings);
         if (reread && this.drawing) {
           if (!this.read(this.drawing.name, this.text, cmd.import)) return;
@@ -100,7 +106,24 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
   /** Nothing changes per frame: the preview is posted when it is planned. */
   frame(): void {}
 
+  /** Checks the settings; if something is wrong, says what, drops the plan and returns true. */
+  private refusedSettings(imp: ImportSettings, plot: PlotSettings): boolean {
+    const problems = settingsProblems(imp, plot);
+    this.settingsProblem = problems.length > 0 ? problems.join(' ') : null;
+    if (!this.settingsProblem) return false;
+    this.plan = null;
+    const name = this.drawing?.name ?? '';
+    this.post({ tool: 'plotter', type: 'file-error', stage: 'plan', name, message: `${name ? `“${name}” cannot be planned: ` : ''}${this.settingsProblem}`, line: null });
+    return true;
+  }
+
   private load(name: string, text: string, imp: ImportSettings, plot: PlotSettings): void {
+    const problems = settingsProblems(imp, plot);
+    if (problems.length > 0) {
+      this.post({ tool: 'plotter', type: 'file-error', stage: 'read', name, message: `“${name}” was not loaded: ${problems.join(' ')}`, line: null });
+      return;
+    }
+    this.settingsProblem = null;
     const prevText = this.text;
     this.text = text;
     if (!this.read(name, text, imp)) {
@@ -125,7 +148,7 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
       if (!(err instanceof FileImportError)) throw err;
       const message = `“${name}” was not loaded: ${err.message}`;
       this.ctx.log('error', 'FILE_INVALID', message);
-      this.post({ tool: 'plotter', type: 'file-error', name, message, line: err.line ?? null });
+      this.post({ tool: 'plotter', type: 'file-error', stage: 'read', name, message, line: err.line ?? null });
       return false;
     }
     this.drawing = drawing;
@@ -188,11 +211,11 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
   private replan(): Plan | null {
     this.plan = null;
     const d = this.drawing, s = this.plotSettings;
-    if (!d || !s) return null;
+    if (!d || !s || this.settingsProblem) return null;
     const notes: string[] = [];
     const pen = this.penSettings(notes);
     if (typeof pen === 'string') {
-      this.post({ tool: 'plotter', type: 'file-error', name: d.name, message: `“${d.name}” cannot be plotted here: ${pen}.`, line: null });
+      this.post({ tool: 'plotter', type: 'file-error', stage: 'plan', name: d.name, message: `“${d.name}” cannot be plotted here: ${pen}.`, line: null });
       return null;
     }
     const start = this.start();
@@ -219,7 +242,7 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
         const message = `“${d.name}” cannot be plotted: ${jobMoveError(err, index, describeSource(ordered, source)).message}`;
         this.ctx.log('error', 'FILE_INVALID', message);
         const line = source && source.path >= 0 ? lineOfSegment(ordered[source.path], source.segment) : null;
-        this.post({ tool: 'plotter', type: 'file-error', name: d.name, message, line });
+        this.post({ tool: 'plotter', type: 'file-error', stage: 'plan', name: d.name, message, line });
         return null;
       }
     }
@@ -244,7 +267,7 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
       notes,
     };
     const layer: PreviewLayer = {
-      strokes: ordered.map((p) => p.points.slice()),
+      strokes: packLines(ordered),
       travel: travelLines(ordered, from),
       travelBefore: travelLines(fileOrder, from),
       area,
@@ -262,6 +285,7 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
     if (!this.drawing) return refuse('There is no file to plot: open an SVG or G-code file first.');
     const maxl = this.ctx.maxl;
     if (!maxl) return refuse('There is no machine to plot on.');
+    if (this.settingsProblem) return refuse(`“${this.drawing.name}” cannot be planned: ${this.settingsProblem}`);
     // Planned afresh from where the pen is now, so that the ETA is the plan's own time.
     const plan = this.replan();
     if (!plan) return refuse(`“${this.drawing.name}” cannot be plotted on this machine.`);

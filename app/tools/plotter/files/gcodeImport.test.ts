@@ -141,6 +141,13 @@ describe('the pen and the warnings', () => {
     expect(pts(d.paths[0])).toEqual([0, 0, 1, 0]);
     expect(d.warnings[0].message).toBe("line 4: lines after the program's end (M2/M30 at line 3) are ignored");
     expect(() => importGcode('a.gcode', 'G0 X1\nG1 X2\n')).toThrow(/no pen-down moves: no move between an M3 and an M5/);
+    // Z0 down, Z5 up, as many plotter files have it: the threshold (0 mm) is at the pen-down height. Said, with the
+    // heights the file uses and the setting that fixes it (the message once named only the threshold).
+    const zeroDown = 'G0 Z5\nG0 X10 Y10\nG1 Z0\nG1 X20 Y20\nG0 Z5\n';
+    expect(() => importGcode('a.gcode', zeroDown)).toThrow(
+      'the file has no pen-down moves: no move with Z below 0 mm (its Z goes from 0 to 5 mm: set Import → Z threshold between its pen-down and pen-up heights, then open it again)',
+    );
+    expect(importGcode('a.gcode', zeroDown, { zThreshold_mm: 2.5 }).paths).toHaveLength(1);
     expect(() => importGcode('a.gcode', '  \n')).toThrow('the file is empty');
   });
 });

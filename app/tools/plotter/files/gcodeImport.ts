@@ -88,6 +88,8 @@ export function importGcode(name: string, text: string, options: GcodeImportOpti
   let lineNow = 0;
 
   let x = 0, y = 0, z = 0;
+  /** mm, the lowest and highest Z the file reaches (for the message when nothing goes below the threshold). */
+  let zLow = Infinity, zHigh = -Infinity;
   let absolute = true;
   let unit = 1; // mm per file unit
   let motion: 0 | 1 | 2 | 3 | null = null;
@@ -204,6 +206,8 @@ export function importGcode(name: string, text: string, options: GcodeImportOpti
     const ny = p.Y ? (absolute ? 0 : y) + p.Y.value * unit : y;
     if (hasZ) {
       z = (absolute ? 0 : z) + (p.Z as Word).value * unit;
+      zLow = Math.min(zLow, z);
+      zHigh = Math.max(zHigh, z);
       if (mode === 'z') {
         const down = z < zThreshold;
         if (!down && penDown) flush();
@@ -236,7 +240,9 @@ export function importGcode(name: string, text: string, options: GcodeImportOpti
     warnings.push({ line: at[0], message: `${at.length > 1 ? 'lines' : 'line'} ${shown.join(', ')}${more > 0 ? ` and ${more} more` : ''}: ${what}` });
   }
   if (paths.length === 0) {
-    const how = mode === 'z' ? `no move with Z below ${zThreshold} mm` : 'no move between an M3 and an M5';
+    // In Z mode, the heights the file uses say where the threshold belongs (Z0 down and Z5 up is common).
+    const heights = zLow < zHigh ? ` (its Z goes from ${+zLow.toFixed(3)} to ${+zHigh.toFixed(3)} mm: set Import → Z threshold between its pen-down and pen-up heights, then open it again)` : '';
+    const how = mode === 'z' ? `no move with Z below ${zThreshold} mm${heights}` : 'no move between an M3 and an M5';
     throw new FileImportError(`the file has no pen-down moves: ${how}`);
   }
   return { name, kind: 'gcode', paths, warnings };

@@ -77,7 +77,12 @@ export interface PreviewStats {
 
 export type FileEvent =
   | { tool: 'plotter'; type: 'file-loaded'; summary: FileSummary; warnings: FileWarning[] }
-  | { tool: 'plotter'; type: 'file-error'; name: string; message: string; line: number | null }
+  /**
+   * `read`: the file was not loaded (the one before stays). `plan`: the loaded file
+   * cannot be planned as the settings stand (bad settings, or a move the planner
+   * refuses): its numbers no longer hold and Plot waits until a plan succeeds.
+   */
+  | { tool: 'plotter'; type: 'file-error'; stage: 'read' | 'plan'; name: string; message: string; line: number | null }
   | { tool: 'plotter'; type: 'file-preview'; layer: PreviewLayer; stats: PreviewStats }
   | { tool: 'plotter'; type: 'file-cleared' }
   /** A plot started (`planned_s` the ETA's basis) or was refused (`reason`). */

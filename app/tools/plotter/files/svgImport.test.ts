@@ -122,6 +122,51 @@ describe('SVG transforms, viewBox and units', () => {
   });
 });
 
+describe('<use>: Inkscape clones and symbols', () => {
+  const xlink = 'xmlns:xlink="http://www.w3.org/1999/xlink"';
+
+  it('draws the element it refers to (xlink:href or href), moved by x, y and its own transform', () => {
+    const d = importSvg(
+      'clones.svg',
+      page(
+        `<defs><g id="tick" transform="translate(1 0)"><line x1="0" y1="0" x2="0" y2="5"/></g></defs>
+<use xlink:href="#tick" x="10" y="20"/>
+<use href="#tick" transform="translate(30 0)" x="0" y="20"/>
+<line id="base" x1="0" y1="90" x2="10" y2="90"/>
+<use xlink:href="#base" transform="rotate(90 50 50)"/>`,
+        xlink,
+      ),
+    );
+    expect(d.paths.map(pts)).toEqual([up([11, 20, 11, 25]), up([31, 20, 31, 25]), up([0, 90, 10, 90]), up([10, 0, 10, 10])]);
+    expect(d.warnings).toEqual([]);
+    // A clone's segments come from the line of the element drawn.
+    expect(Array.from(d.paths[0].lines ?? [])).toEqual([3]);
+  });
+
+  it('a <symbol> without a viewBox draws as a group; one with a viewBox, a missing target and an external one are named', () => {
+    const d = importSvg(
+      'symbols.svg',
+      page(
+        `<symbol id="s"><line x1="0" y1="0" x2="4" y2="0"/></symbol>
+<symbol id="v" viewBox="0 0 1 1"><line x1="0" y1="0" x2="1" y2="0"/></symbol>
+<use href="#s" x="5" y="5"/><use href="#v"/><use href="#nothing"/><use href="other.svg#s"/>`,
+      ),
+    );
+    expect(d.paths.map(pts)).toEqual([up([5, 5, 9, 5])]);
+    expect(d.warnings.map((w) => w.message)).toEqual([
+      '<use> is not drawn: it refers to a <symbol> with its own viewBox, which this importer does not scale',
+      '<use> is not drawn: it refers to "#nothing", and no element has that id',
+      '<use> is not drawn: it refers to "other.svg#s", outside this file',
+    ]);
+  });
+
+  it('a <use> that refers to itself, or to a group around it, is refused', () => {
+    expect(refused(page('<g id="loop"><line x1="0" y1="0" x2="1" y2="1"/>\n<use href="#loop" x="1"/></g>')).message).toMatch(
+      /^line \d+: <use> refers to "#loop", which contains it: the copies would never end$/,
+    );
+  });
+});
+
 describe('what is not drawn', () => {
   it('skips defs, display:none (attribute or style) and hidden elements, and names unsupported ones', () => {
     const d = importSvg(

@@ -19,6 +19,10 @@
  * Every shape (rect, circle, ellipse, line, polyline, polygon) is written as path
  * data and goes the same way. A group's transforms apply innermost first, then the
  * root's viewBox and units (svgUnits.ts).
+ *
+ * A `<use>` (Inkscape's clones, symbols from a library) draws the element its href
+ * names as if it sat in a group with the use's transform then translate(x, y), as
+ * SVG renders it; a `<symbol>` without a viewBox draws as a group.
  */
 import { DOMParser, type Element as XmlElement, type Node as XmlNode } from '@xmldom/xmldom';
 import svgpath from 'svgpath';
@@ -27,11 +31,12 @@ import { FileImportError, pathFromPoints, type Drawing, type FileWarning, type P
 import { lengthInPx, parseNumberList, rootMatrix } from './svgUnits.ts';
 
 const SVG_NS = 'http://www.w3.org/2000/svg';
+const XLINK_NS = 'http://www.w3.org/1999/xlink';
 
 /** Elements never drawn, with all they contain. */
 const NOT_RENDERED = new Set(['defs', 'symbol', 'clipPath', 'mask', 'marker', 'pattern', 'linearGradient', 'radialGradient', 'filter', 'style', 'script', 'title', 'desc', 'metadata']);
 /** Drawable elements this importer does not draw: each is named in a warning. */
-const NOT_SUPPORTED = new Set(['text', 'image', 'use', 'foreignObject', 'svg']);
+const NOT_SUPPORTED = new Set(['text', 'image', 'foreignObject', 'svg']);
 const CONTAINERS = new Set(['g', 'a', 'switch']);
 const SHAPES = new Set(['path', 'rect', 'circle', 'ellipse', 'line', 'polyline', 'polygon']);
 
@@ -54,7 +59,7 @@ export function importSvg(name: string, text: string, options: SvgImportOptions 
     }
   }
   const page = rootMatrix(root.getAttribute('width'), root.getAttribute('height'), viewBox, root.getAttribute('preserveAspectRatio'));
-  const walker = new Walker(tol, page.matrix);
+  const walker = new Walker(tol, page.matrix, root);
   walker.children(root, [], true);
   if (walker.paths.length === 0) {
     const notDrawn = walker.warnings.length > 0 ? ` (${walker.warnings.map((w) => w.message).join('; ')})` : '';
@@ -116,9 +121,15 @@ class Walker {
   readonly paths: PlotPath[] = [];
   readonly warnings: FileWarning[] = [];
 
+  /** The elements a <use> being drawn refers to, to refuse a loop. */
+  private readonly using = new Set<XmlElement>();
+  /** Elements by id, gathered at the first <use>. */
+  private ids: Map<string, XmlElement> | null = null;
+
   constructor(
     private readonly tol: number,
     private readonly page: [number, number, number, number, number, number],
+    private readonly root: XmlElement,
   ) {}
 
   /** Walks `parent`'s element children; `transforms` are the ancestors' own, outermost first. */
@@ -143,6 +154,10 @@ class Walker {
       this.children(el, chain, visible);
       return;
     }
+    if (tag === 'use') {
+      this.use(el, chain, visible);
+      return;
+    }
     if (NOT_SUPPORTED.has(tag)) {
       if (visible) this.warnings.push({ line: lineOf(el), message: `${describe(el)} is not drawn: only path, line, polyline, polygon, rect, circle and ellipse are` });
       return;
@@ -151,6 +166,33 @@ class Walker {
     const d = shapeData(el, tag, this.warnings);
     if (d === null) return;
     this.draw(el, d, chain);
+  }
+
+  /** A <use>: the element it refers to, in a group moved by the use's transform (in `chain`) then its x, y. */
+  private use(el: XmlElement, chain: readonly string[], visible: boolean): void {
+    const href = (el.getAttribute('href') ?? el.getAttributeNS(XLINK_NS, 'href') ?? '').trim();
+    const skip = (why: string) => {
+      if (visible) this.warnings.push({ line: lineOf(el), message: `${describe(el)} is not drawn: ${why}` });
+    };
+    if (href === '') return skip('it has no href');
+    if (!href.startsWith('#')) return skip(`it refers to "${href}", outside this file`);
+    this.ids ??= idsUnder(this.root);
+    const target = this.ids.get(href.slice(1));
+    if (!target) return skip(`it refers to "${href}", and no element has that id`);
+    let loop = this.using.has(target);
+    for (let a: XmlNode | null = el; a && !loop; a = a.parentNode) loop = a === target;
+    if (loop) throw new FileImportError(`${describe(el)} refers to "${href}", which contains it: the copies would never end`, lineOf(el));
+    const x = num(el, 'x', 0) as number, y = num(el, 'y', 0) as number;
+    const inner = x !== 0 || y !== 0 ? [...chain, `translate(${x} ${y})`] : chain;
+    this.using.add(target);
+    try {
+      if (target.localName === 'symbol') {
+        if (target.getAttribute('viewBox')) return skip('it refers to a <symbol> with its own viewBox, which this importer does not scale');
+        this.children(target, inner, visible);
+      } else this.element(target, inner, visible);
+    } finally {
+      this.using.delete(target);
+    }
   }
 
   private draw(el: XmlElement, d: string, chain: readonly string[]): void {
@@ -176,6 +218,18 @@ class Walker {
       if (line > 0) path.lines = new Int32Array(path.points.length / 2 - 1).fill(line);
     }
   }
+}
+
+/** Every element under `root` (itself included) by its id; the first in document order wins. */
+function idsUnder(root: XmlElement): Map<string, XmlElement> {
+  const ids = new Map<string, XmlElement>();
+  const visit = (el: XmlElement) => {
+    const id = el.getAttribute('id');
+    if (id && !ids.has(id)) ids.set(id, el);
+    for (let node = el.firstChild; node; node = node.nextSibling) if (node.nodeType === 1) visit(node as XmlElement);
+  };
+  visit(root);
+  return ids;
 }
 
 /** A number attribute in user units (lengths with units converted), `fallback` when absent. */

@@ -137,7 +137,7 @@ export class LiveDrawer {
     // claim() writes its own note (not ready, or who moves the machine).
     if (!maxl || !this.host.claim('draw a stroke')) {
       this.refusedPoints++;
-      this.host.strokeRefused(id, 'the machine is not ready or busy');
+      this.host.strokeRefused(id, 'the machine is not ready, or a job, a jog or another tool moves it (the log says which)');
       return false;
     }
     this.attach(maxl);
