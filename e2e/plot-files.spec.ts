@@ -231,10 +231,9 @@ test('a file of 20 000 short paths: said while it is read and planned, the page 
   console.log(`[plot-files] 20 000 paths: ${tasks.length} main-thread tasks over 50 ms while it was read, planned, re-planned and shown (${tasks.map((t) => t.toFixed(0)).join(', ')} ms); the longest ${longest.toFixed(0)} ms`);
   // The preview once made 60 000 typed arrays and 20 000 SVG elements per plan: the page froze 1.3-2 s at each
   // plan (more on a busy machine), and 1.9 s to show the file-order travel. Now it is one canvas, whatever the
-  // file; the longest task (150-400 ms here, 700 ms with both cores busy; logged above) is only guarded coarsely,
-  // as a figure measured while others compile is noisy.
+  // file: that is what is asserted. The longest task (150-400 ms here, 700 ms with both cores busy) is logged
+  // above, not asserted: the specs never assert wall-clock speed.
   await expect(page.getByTestId('plot-files').locator('svg, svg *')).toHaveCount(0);
-  expect(longest).toBeLessThan(2000);
 
   // It plots: the job runs through its first paths; then it is cancelled (the whole takes 1 h 48 min).
   await page.getByTestId('file-plot').click();
