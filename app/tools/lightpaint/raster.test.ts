@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import type { EvaluatorState, LinearMove, EventEvaluatorSpec } from '../../../core/index.ts';
 import { textBitmap } from './bitmap.ts';
-import { PASS_PIECE_MM, bitmapEvaluator, columnAt, isProblem, planRaster, runUpLength, type RasterMachine, type RasterPlan, type RasterSettings } from './raster.ts';
+import { PASS_PIECE_MM, PASS_PIECE_S, bitmapEvaluator, columnAt, isProblem, planRaster, runUpLength, type RasterMachine, type RasterPlan, type RasterSettings } from './raster.ts';
 
 const machine: RasterMachine = {
   motionAxes: ['x', 'y'],
@@ -58,6 +58,24 @@ describe('raster', () => {
     expect(events[1]).toEqual({ name: 'neopixelColour', value: 0xff3c0a });
     expect(events[2]).toEqual({ name: 'neopixelCruise', value: 100 });
     expect((events[0] as EventEvaluatorSpec).evaluationPrecision).toBe(0.5);
+  });
+
+  it('a slow pass is queued in pieces of at most PASS_PIECE_S, and the travel to its start runs at the top speed', () => {
+    for (const speed of [0.5, 2, 20, 100, 200]) {
+      const plan = planRaster(textBitmap('HI', 8), { ...settings, speed }, machine) as RasterPlan;
+      const [travel, ...pieces] = plan.moves as LinearMove[];
+      expect(travel.maxVelocity).toBe(machine.maxSpeed);
+      let x = plan.layout.xStart;
+      for (const p of pieces) {
+        const end = (p.endPosition as number[])[0];
+        expect(end - x).toBeLessThanOrEqual(Math.min(PASS_PIECE_MM, speed * PASS_PIECE_S) + 1e-9);
+        expect(p.maxVelocity).toBe(speed);
+        x = end;
+      }
+      expect(x).toBeCloseTo(plan.layout.xEnd, 9);
+    }
+    // At 2 mm/s, 0.4 mm pieces: 22.2 mm in 56.
+    expect((planRaster(textBitmap('HI', 8), { ...settings, speed: 2 }, machine) as RasterPlan).moves).toHaveLength(1 + 56);
   });
 
   it('reversed, the pass runs right to left over the same span', () => {

@@ -44,10 +44,20 @@ export const COLOUR_CHANNEL = 'neopixelColour';
 export const CRUISE_CHANNEL = 'neopixelCruise';
 
 /**
- * mm: the pass is queued in pieces no longer than this. A queued segment runs to
- * its end once sent, so the pieces bound how far a pause or cancel runs on.
+ * The pass is queued in pieces no longer than PASS_PIECE_MM and no longer than
+ * PASS_PIECE_S at its speed: a queued segment may run to its end once sent (the
+ * streamer slices long ones only where a slice is long enough to split off, which
+ * at a few mm/s it is not), so the pieces bound how far a pause or cancel runs on,
+ * in time as in mm: 0.2 s at any speed (20 mm pieces at 100 mm/s; at 2 mm/s a
+ * 20 mm piece ran on for 10 s after Cancel).
  */
 export const PASS_PIECE_MM = 20;
+export const PASS_PIECE_S = 0.2;
+
+/** mm: the longest piece of a pass at `speed` mm/s. */
+export function passPieceLength(speed: number): number {
+  return Math.min(PASS_PIECE_MM, speed * PASS_PIECE_S);
+}
 
 /** ms between evaluator samples: ±0.05 mm of column edge at 200 mm/s. */
 export const DEFAULT_EVALUATION_PRECISION_MS = 0.5;
@@ -195,10 +205,12 @@ export function planRaster(bitmap: Bitmap, s: RasterSettings, m: RasterMachine):
     { name: BITMAP_CHANNEL, evaluationPrecision: s.evaluationPrecision_ms, evaluator: bitmapEvaluator(layout, axis, 0, s.evaluationPrecision_ms) },
     ...fixed,
   ];
-  const moves: Move[] = [{ endPosition: at(from), maxVelocity: speed, eventChannels: travelEvents }];
+  // The travel to the start, strip dark, at the machine's top speed (LightBurn's
+  // travel moves): at the painting speed a slow picture's travel took minutes.
+  const moves: Move[] = [{ endPosition: at(from), maxVelocity: m.maxSpeed, eventChannels: travelEvents }];
   // The pass in collinear pieces (no slowing at their joints), each setting the same
   // channels: a pause or a cancel brakes within a piece or two instead of at the end.
-  const pieces = Math.max(1, Math.ceil(total / PASS_PIECE_MM));
+  const pieces = Math.max(1, Math.ceil(total / passPieceLength(speed) - 1e-9));
   for (let k = 1; k <= pieces; k++) {
     const x = k === pieces ? to : from + ((to - from) * k) / pieces;
     moves.push({ endPosition: at(x), maxVelocity: speed, eventChannels: rasterEvents });
