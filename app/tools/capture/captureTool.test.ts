@@ -73,6 +73,38 @@ describe('capture tool (worker)', () => {
     await b.sim.stop();
   }, 120_000);
 
+  it('a sweep cut short looks for its peak only in the band it swept, and says so', async () => {
+    // Cancelled at about 20 Hz of a 10–45 Hz sweep, the belt's resonance (27.9 Hz) was never
+    // reached: the record once showed a "peak" found in 10–45 Hz (at 14.6 Hz, 48 % off) with
+    // nothing to say the sweep had not got there.
+    const b = await startMachine(accelRig(), { seed: 4 });
+    await runJob(b, [{ endPosition: [100] }]);
+    const posted: WorkerEvent[] = [];
+    const tool = new CaptureTool(contextFor(b, posted, []));
+    tool.handle({ tool: 'capture', type: 'capture-run', motion: { kind: 'sweep', axis: 'x', fromHz: 10, toHz: 45, hzPerSecond: 5, accelPerHz: 60 } });
+    const t0 = b.scheduler.now();
+    await b.scheduler.advance(2_000_000);
+    tool.handle({ tool: 'capture', type: 'capture-cancel' });
+    let done: CaptureRecord | null = null;
+    for (let k = 0; k < 100 && !done; k++) {
+      await b.scheduler.advance(50_000);
+      const last = captureEvents(posted).find((e) => e.type === 'capture-done');
+      if (last?.type === 'capture-done') done = last.record;
+    }
+    const r = done!;
+    expect(r.cutShort).toBe('cancelled');
+    const a = r.analysis!;
+    // The sweep rises at 5 Hz/s: about 10 + 5 · 2 = 20 Hz when cancelled.
+    const reached = 10 + 5 * ((r.end_us - t0) / 1e6);
+    expect(a.band_hz[0]).toBe(10);
+    expect(a.band_hz[1]).toBeGreaterThan(18);
+    expect(a.band_hz[1]).toBeLessThanOrEqual(reached + 0.5);
+    expect(a.band_hz[1]).toBeLessThan(r.simulatorTruth!.truePeak_hz);
+    expect(a.peak_hz).toBeLessThanOrEqual(a.band_hz[1]);
+    expect(r.warnings.join(' ')).toMatch(/Cut short at about (19|20|21)\.\d Hz of the 10–45 Hz sweep: .*resonance above/);
+    await b.sim.stop();
+  }, 120_000);
+
   it('refuses a motion longer than the as-planned history keeps, and one outside the soft limits, moving nothing', async () => {
     const b = await startMachine(accelRig(), { seed: 5, maxl: { historyLimit: 100 } });
     const posted: WorkerEvent[] = [];
