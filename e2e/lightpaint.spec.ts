@@ -139,3 +139,26 @@ test('a bitmap painted on the grid is what the strip writes', async ({ page }) =
   const layout = JSON.parse((await page.getByTestId('lightpaint-layout').getAttribute('data-layout')) as string) as RasterLayout;
   expect(layout.bits).toEqual([0b10000001, 0, 1 << 4, 0]);
 });
+
+test('an image too wide for the bed is told to be cropped, never offered a pitch (a finer pitch only adds columns)', async ({ page }) => {
+  await openWorkbench(page);
+  await page.getByTestId('tab-lightpaint').click();
+  await page.getByTestId('lightpaint-source-image').click();
+  // 2000 × 100 px: 20 × the strip's 51.2 mm = 1024 mm along x at any pitch.
+  const wide = await page.evaluate(async () => {
+    const c = new OffscreenCanvas(2000, 100);
+    const g = c.getContext('2d')!;
+    g.fillStyle = 'white';
+    g.fillRect(0, 0, 2000, 100);
+    const blob = await c.convertToBlob({ type: 'image/png' });
+    return Array.from(new Uint8Array(await blob.arrayBuffer()));
+  });
+  await page.getByTestId('lightpaint-image').setInputFiles({ name: 'banner.png', mimeType: 'image/png', buffer: Buffer.from(wide) });
+  await expect(page.getByTestId('lightpaint-bitmap')).toHaveAttribute('data-width', '512');
+  await page.getByTestId('lightpaint-start').click();
+  await expect(page.getByTestId('lightpaint-problem')).toHaveText(/1024\.2 mm along x.*crop the image/);
+  await expect(page.getByTestId('lightpaint-problem')).not.toHaveText(/pitch of/);
+  // Once offered “a pitch of 0.58 mm”: 1765 columns, still 1024 mm, and a smaller pitch offered again.
+  await expect(page.getByTestId('lightpaint-fit')).toHaveCount(0);
+  await screenshot(page, 'lightpaint-image-too-wide');
+});

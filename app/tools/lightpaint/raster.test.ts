@@ -105,6 +105,19 @@ describe('raster', () => {
     if (!isProblem(fitted)) expect(fitted.layout.xEnd).toBeLessThanOrEqual(300);
   });
 
+  it('an image too wide is never offered a pitch: its aspect is kept, so a finer pitch only adds columns', () => {
+    // 2000 × 100 px at the strip's 8 × 6.4 mm: 1024 mm wide at any pitch. It was offered
+    // “a pitch of 0.58 mm”, which made it 1765 columns and just as wide (and so on down).
+    const image = { width: 512, height: 8, lit: new Uint8Array(512 * 8).fill(1) };
+    const r = planRaster(image, { ...settings, widthFixed: true }, machine);
+    expect(isProblem(r)).toBe(true);
+    if (!isProblem(r)) return;
+    expect(r.fitPitch_mm).toBeUndefined();
+    expect(r.error).toMatch(/1024\.2 mm along x/);
+    expect(r.error).toMatch(/crop the image/);
+    expect(r.error).not.toMatch(/pitch of/);
+  });
+
   it('refuses a machine without the bitmap channel, and bad settings', () => {
     expect(isProblem(planRaster(textBitmap('A', 8), settings, { ...machine, eventChannels: [] }))).toBe(true);
     expect(isProblem(planRaster(textBitmap('A', 8), { ...settings, pitch_mm: 0 }, machine))).toBe(true);

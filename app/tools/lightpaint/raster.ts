@@ -73,6 +73,12 @@ export interface RasterSettings {
   reverse: boolean;
   /** ms between evaluator samples. */
   evaluationPrecision_ms: number;
+  /**
+   * The picture's width in mm does not depend on the pitch: an image, its aspect kept
+   * (imageBitmap.ts makes w/h · LEDs · spacing / pitch columns). A finer pitch then only
+   * adds columns, so a picture too wide is never offered one.
+   */
+  widthFixed?: boolean;
 }
 
 /** What the planner needs of the machine. */
@@ -175,14 +181,17 @@ export function planRaster(bitmap: Bitmap, s: RasterSettings, m: RasterMachine):
   const room = m.softMax[0] - ox;
   if (ox < m.softMin[0] || total > room) {
     const missing = total - room;
-    const fit = fitPitch(n, room, speed, m.maxAccel);
+    const fit = s.widthFixed ? null : fitPitch(n, room, speed, m.maxAccel);
     const fitPitch_mm = fit !== null && fit < s.pitch_mm ? fit : undefined;
+    const shorten = s.widthFixed
+      ? 'crop the image (its aspect is kept on the machine, so a finer pitch only adds columns)'
+      : 'shorten the picture';
     return {
       error:
         ox < m.softMin[0]
           ? `The origin (x = ${ox} mm) is outside the soft limits [${m.softMin[0]}, ${m.softMax[0]}] mm.`
           : `The pass needs ${total.toFixed(1)} mm along ${axis} (${n} columns × ${s.pitch_mm} mm and ${runUp} mm of run-up and run-down each side), but only ${Math.max(0, room).toFixed(1)} mm lie between the origin and the soft limit at ${m.softMax[0]} mm: ${missing.toFixed(1)} mm missing. ` +
-            (total <= m.softMax[0] - m.softMin[0] ? `Set the origin at ${axis} ≤ ${(m.softMax[0] - total).toFixed(1)} mm, shorten the picture` : `It is longer than the whole ${axis} range: shorten the picture`) +
+            (total <= m.softMax[0] - m.softMin[0] ? `Set the origin at ${axis} ≤ ${(m.softMax[0] - total).toFixed(1)} mm, ${shorten}` : `It is longer than the whole ${axis} range: ${shorten}`) +
             (fitPitch_mm ? `, or use a pitch of ${fitPitch_mm} mm.` : '.'),
       fitPitch_mm,
     };
