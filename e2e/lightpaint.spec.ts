@@ -8,12 +8,16 @@ import { readFileSync } from 'node:fs';
 import type { Page } from '@playwright/test';
 import { expect, test } from './support/test.ts';
 import { analyseColumns, type ExposureChannel } from '../app/tools/lightpaint/exposureAnalysis.ts';
+import { srgbToLinear } from '../app/tools/lightpaint/exposureFrame.ts';
 import type { RasterLayout } from '../app/tools/lightpaint/raster.ts';
 import { openWorkbench, screenshot } from './support/workbench.ts';
 
-/** The PNG's red channel (the colour's brightest), decoded by the browser. */
+/**
+ * The PNG's red channel (the colour's brightest), decoded by the browser, as linear
+ * light on 0..255: the PNG is sRGB-encoded, as a camera writes (exposureFrame.ts).
+ */
 async function decodePng(page: Page, png: Buffer): Promise<{ width: number; height: number; red: number[] }> {
-  return page.evaluate(async (b64) => {
+  const decoded = await page.evaluate(async (b64) => {
     const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
     const img = await createImageBitmap(new Blob([bytes], { type: 'image/png' }));
     const c = new OffscreenCanvas(img.width, img.height);
@@ -24,6 +28,7 @@ async function decodePng(page: Page, png: Buffer): Promise<{ width: number; heig
     for (let k = 0; k < data.length; k += 4) red.push(data[k]);
     return { width: img.width, height: img.height, red };
   }, png.toString('base64'));
+  return { ...decoded, red: decoded.red.map((v) => 255 * srgbToLinear(v / 255)) };
 }
 
 test.use({ viewport: { width: 1600, height: 1000 } });
