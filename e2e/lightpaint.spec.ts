@@ -121,6 +121,10 @@ test('bad input is refused with words: empty text, a picture too wide (with a pi
   await page.getByTestId('lightpaint-fit').click();
   const pitch = Number(await page.getByTestId('lightpaint-pitch').inputValue());
   expect(pitch).toBeLessThan(3);
+  // Slower, so the pass (about 290 mm) lasts some 15 s and Cancel finds it running even
+  // on a busy machine (at 200 mm/s it could end before the click); the fitted pitch still
+  // fits, as the run-up only shortens.
+  await page.getByTestId('lightpaint-speed').fill('20');
   await page.getByTestId('lightpaint-start').click();
   await expect(page.getByTestId('job-progress')).toHaveAttribute('data-phase', 'running');
   await expect(page.getByTestId('lightpaint-problem')).toHaveCount(0);
