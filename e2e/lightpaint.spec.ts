@@ -171,3 +171,24 @@ test('an image too wide for the bed is told to be cropped, never offered a pitch
   await expect(page.getByTestId('lightpaint-fit')).toHaveCount(0);
   await screenshot(page, 'lightpaint-image-too-wide');
 });
+
+test('the bitmap preview draws each cell as tall against its width as on the machine (LED spacing ÷ pitch)', async ({ page }) => {
+  await openWorkbench(page);
+  await page.getByTestId('tab-lightpaint').click();
+  await page.getByTestId('lightpaint-source-text').click();
+  await page.getByTestId('lightpaint-text').fill('HI');
+  const ratio = async () => {
+    const box = (await page.getByTestId('lightpaint-cell-0-0').boundingBox())!;
+    return box.height / box.width;
+  };
+  // 2 mm along the move, 6.4 mm between LEDs: 3.2 times as tall as wide, as the photo shows
+  // them (square cells once drew the letters 3.2 times wider than the strip paints them).
+  await page.getByTestId('lightpaint-pitch').fill('2');
+  await expect(page.getByTestId('lightpaint-bitmap')).toHaveAttribute('data-width', '11');
+  expect(Math.abs((await ratio()) / 3.2 - 1)).toBeLessThan(0.1);
+  await expect(page.getByTestId('lightpaint-size')).toContainText('22.0 mm along x × 51.2 mm across');
+  await screenshot(page, 'lightpaint-preview-aspect');
+  await page.getByTestId('lightpaint-pitch').fill('6.4');
+  await expect(page.getByTestId('lightpaint-bitmap')).toHaveAttribute('data-aspect', '1');
+  expect(Math.abs((await ratio()) - 1)).toBeLessThan(0.1);
+});
