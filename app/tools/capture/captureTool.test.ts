@@ -105,6 +105,26 @@ describe('capture tool (worker)', () => {
     await b.sim.stop();
   }, 120_000);
 
+  it('says what is wrong with a field in the words beside it: an empty one, and one the core refuses', async () => {
+    // An empty “From (Hz)” once read “fromHz: must be a positive number, got null”.
+    const b = await startMachine(accelRig(), { seed: 6 });
+    const posted: WorkerEvent[] = [];
+    const tool = new CaptureTool(contextFor(b, posted, []));
+    const sweep = { kind: 'sweep', axis: 'x', fromHz: 10, toHz: 45, hzPerSecond: 1, accelPerHz: 60 } as const;
+    tool.handle({ tool: 'capture', type: 'capture-run', motion: { ...sweep, fromHz: null as unknown as number } });
+    tool.handle({ tool: 'capture', type: 'capture-run', motion: { ...sweep, toHz: 10 } });
+    tool.handle({ tool: 'capture', type: 'capture-run', motion: { kind: 'growing', axis: 'x', grow: 'speed', stroke_mm: 20, from: 20, to: 150, steps: NaN } });
+    await b.scheduler.advance(100_000);
+    const failures = captureEvents(posted).map((e) => (e.type === 'capture-failed' ? e.message : ''));
+    expect(failures).toEqual([
+      'Cannot capture: From (Hz) is empty: type a number.',
+      'Cannot capture: To (Hz): must be above “From (Hz)” (10 Hz), got 10 Hz',
+      'Cannot capture: Strokes is empty: type a number.',
+    ]);
+    expect(b.maxl.queue.size).toBe(0);
+    await b.sim.stop();
+  }, 60_000);
+
   it('refuses a motion longer than the as-planned history keeps, and one outside the soft limits, moving nothing', async () => {
     const b = await startMachine(accelRig(), { seed: 5, maxl: { historyLimit: 100 } });
     const posted: WorkerEvent[] = [];
@@ -116,7 +136,7 @@ describe('capture tool (worker)', () => {
     const failures = captureEvents(posted).filter((e) => e.type === 'capture-failed');
     expect(failures.map((e) => (e.type === 'capture-failed' ? e.message : ''))).toEqual([
       expect.stringMatching(/keeps 100 segments/),
-      expect.stringMatching(/stroke_mm: a 500 mm stroke/),
+      expect.stringMatching(/Stroke \(mm\): a 500 mm stroke/),
     ]);
     expect(b.maxl.queue.size).toBe(0);
     expect(b.maxl.nextMoveStart[0]).toBe(position);
