@@ -8,12 +8,16 @@ import { readFileSync } from 'node:fs';
 import type { Page } from '@playwright/test';
 import { expect, test } from './support/test.ts';
 import { analyseColumns, type ExposureChannel } from '../app/tools/lightpaint/exposureAnalysis.ts';
+import { srgbToLinear } from '../app/tools/lightpaint/exposureFrame.ts';
 import type { RasterLayout } from '../app/tools/lightpaint/raster.ts';
 import { openWorkbench, screenshot } from './support/workbench.ts';
 
-/** The PNG's red channel (the colour's brightest), decoded by the browser. */
+/**
+ * The PNG's red channel (the colour's brightest), decoded by the browser, as linear
+ * light on 0..255: the PNG is sRGB-encoded, as a camera writes (exposureFrame.ts).
+ */
 async function decodePng(page: Page, png: Buffer): Promise<{ width: number; height: number; red: number[] }> {
-  return page.evaluate(async (b64) => {
+  const decoded = await page.evaluate(async (b64) => {
     const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
     const img = await createImageBitmap(new Blob([bytes], { type: 'image/png' }));
     const c = new OffscreenCanvas(img.width, img.height);
@@ -24,6 +28,7 @@ async function decodePng(page: Page, png: Buffer): Promise<{ width: number; heig
     for (let k = 0; k < data.length; k += 4) red.push(data[k]);
     return { width: img.width, height: img.height, red };
   }, png.toString('base64'));
+  return { ...decoded, red: decoded.red.map((v) => 255 * srgbToLinear(v / 255)) };
 }
 
 test.use({ viewport: { width: 1600, height: 1000 } });
@@ -116,6 +121,10 @@ test('bad input is refused with words: empty text, a picture too wide (with a pi
   await page.getByTestId('lightpaint-fit').click();
   const pitch = Number(await page.getByTestId('lightpaint-pitch').inputValue());
   expect(pitch).toBeLessThan(3);
+  // Slower, so the pass (about 290 mm) lasts some 15 s and Cancel finds it running even
+  // on a busy machine (at 200 mm/s it could end before the click); the fitted pitch still
+  // fits, as the run-up only shortens.
+  await page.getByTestId('lightpaint-speed').fill('20');
   await page.getByTestId('lightpaint-start').click();
   await expect(page.getByTestId('job-progress')).toHaveAttribute('data-phase', 'running');
   await expect(page.getByTestId('lightpaint-problem')).toHaveCount(0);
@@ -138,4 +147,48 @@ test('a bitmap painted on the grid is what the strip writes', async ({ page }) =
   await expect(page.getByTestId('job-progress')).toHaveAttribute('data-phase', 'done', { timeout: 60_000 });
   const layout = JSON.parse((await page.getByTestId('lightpaint-layout').getAttribute('data-layout')) as string) as RasterLayout;
   expect(layout.bits).toEqual([0b10000001, 0, 1 << 4, 0]);
+});
+
+test('an image too wide for the bed is told to be cropped, never offered a pitch (a finer pitch only adds columns)', async ({ page }) => {
+  await openWorkbench(page);
+  await page.getByTestId('tab-lightpaint').click();
+  await page.getByTestId('lightpaint-source-image').click();
+  // 2000 × 100 px: 20 × the strip's 51.2 mm = 1024 mm along x at any pitch.
+  const wide = await page.evaluate(async () => {
+    const c = new OffscreenCanvas(2000, 100);
+    const g = c.getContext('2d')!;
+    g.fillStyle = 'white';
+    g.fillRect(0, 0, 2000, 100);
+    const blob = await c.convertToBlob({ type: 'image/png' });
+    return Array.from(new Uint8Array(await blob.arrayBuffer()));
+  });
+  await page.getByTestId('lightpaint-image').setInputFiles({ name: 'banner.png', mimeType: 'image/png', buffer: Buffer.from(wide) });
+  await expect(page.getByTestId('lightpaint-bitmap')).toHaveAttribute('data-width', '512');
+  await page.getByTestId('lightpaint-start').click();
+  await expect(page.getByTestId('lightpaint-problem')).toHaveText(/1024\.2 mm along x.*crop the image/);
+  await expect(page.getByTestId('lightpaint-problem')).not.toHaveText(/pitch of/);
+  // Once offered “a pitch of 0.58 mm”: 1765 columns, still 1024 mm, and a smaller pitch offered again.
+  await expect(page.getByTestId('lightpaint-fit')).toHaveCount(0);
+  await screenshot(page, 'lightpaint-image-too-wide');
+});
+
+test('the bitmap preview draws each cell as tall against its width as on the machine (LED spacing ÷ pitch)', async ({ page }) => {
+  await openWorkbench(page);
+  await page.getByTestId('tab-lightpaint').click();
+  await page.getByTestId('lightpaint-source-text').click();
+  await page.getByTestId('lightpaint-text').fill('HI');
+  const ratio = async () => {
+    const box = (await page.getByTestId('lightpaint-cell-0-0').boundingBox())!;
+    return box.height / box.width;
+  };
+  // 2 mm along the move, 6.4 mm between LEDs: 3.2 times as tall as wide, as the photo shows
+  // them (square cells once drew the letters 3.2 times wider than the strip paints them).
+  await page.getByTestId('lightpaint-pitch').fill('2');
+  await expect(page.getByTestId('lightpaint-bitmap')).toHaveAttribute('data-width', '11');
+  expect(Math.abs((await ratio()) / 3.2 - 1)).toBeLessThan(0.1);
+  await expect(page.getByTestId('lightpaint-size')).toContainText('22.0 mm along x × 51.2 mm across');
+  await screenshot(page, 'lightpaint-preview-aspect');
+  await page.getByTestId('lightpaint-pitch').fill('6.4');
+  await expect(page.getByTestId('lightpaint-bitmap')).toHaveAttribute('data-aspect', '1');
+  expect(Math.abs((await ratio()) - 1)).toBeLessThan(0.1);
 });

@@ -44,6 +44,14 @@ export function buildRecord(input: RecordInput): CaptureRecord {
   if (start_us < horizon) {
     warnings.push(`The as-planned history no longer holds the plan before ${(horizon / 1e6).toFixed(3)} s (it keeps ${maxl.history.capacity} segments): planned cells there are empty.`);
   }
+  const band = sweptBand(input.motion, input.planned, input.cutShort ? (end_us - start_us) / 1e6 : null);
+  if (band.cutAt_hz !== null && input.motion.kind === 'sweep') {
+    const { fromHz, toHz } = input.motion;
+    const reached = band.cutAt_hz.toFixed(1);
+    warnings.push(
+      `Cut short at about ${reached} Hz of the ${fromHz}–${toHz} Hz sweep: the spectrum's peak is looked for in ${fromHz}–${reached} Hz only, so a resonance above ${reached} Hz is not in this capture (run the whole sweep to find it).`,
+    );
+  }
   const sensors: SensorTrace[] = [];
   for (const [key, capture] of maxl.captures) sensors.push(traceOf(maxl, capture, input.firstIndex.get(key) ?? 0, end_us, horizon));
 
@@ -81,7 +89,7 @@ export function buildRecord(input: RecordInput): CaptureRecord {
     plan,
     segments,
     sensors,
-    analysis: analyse(maxl, sensors, input.motion, input.planned),
+    analysis: analyse(maxl, sensors, input.motion, band.band_hz),
     simulatorTruth: truthOf(sensors, input.truth ?? null),
   };
 }
@@ -158,7 +166,22 @@ function channelNames(capture: SensorCapture): string[] {
   return Array.from({ length: capture.channels }, (_, c) => `${capture.reader}${c}`);
 }
 
-function analyse(maxl: Maxl, sensors: SensorTrace[], motion: TestMotion, planned: PlannedMotion): CaptureAnalysisView | null {
+/**
+ * The band the motion excited: the planned one, or for a sweep cut short after
+ * `cutAfter_s` (null: it ran whole) only the frequencies it reached. The sweep's
+ * frequency rises by `hzPerSecond` each second (each stroke of period 1/f raises f by
+ * rate/f, so df/dt = rate): f(t) = from + rate·t. The time from the run's start to its
+ * end overstates t by the start lead and the braking (milliseconds), so the band is a
+ * hair wide, never narrow.
+ */
+export function sweptBand(motion: TestMotion, planned: PlannedMotion, cutAfter_s: number | null): { band_hz: [number, number]; cutAt_hz: number | null } {
+  if (motion.kind !== 'sweep' || cutAfter_s === null) return { band_hz: planned.band_hz, cutAt_hz: null };
+  const reached = motion.fromHz + motion.hzPerSecond * Math.max(0, cutAfter_s);
+  if (reached >= planned.band_hz[1]) return { band_hz: planned.band_hz, cutAt_hz: null };
+  return { band_hz: [planned.band_hz[0], reached], cutAt_hz: reached };
+}
+
+function analyse(maxl: Maxl, sensors: SensorTrace[], motion: TestMotion, band_hz: [number, number]): CaptureAnalysisView | null {
   const sensor = sensors.findIndex((s) => s.values.length >= 1 && s.author_us.length >= 16);
   if (sensor < 0) return null;
   const trace = sensors[sensor];
@@ -171,14 +194,14 @@ function analyse(maxl: Maxl, sensors: SensorTrace[], motion: TestMotion, planned
       measured: trace.values[channel],
       gapsBefore: trace.gaps.filter((g) => g.kind === 'lost').map((g) => g.index),
       planned: (t) => maxl.sample(t).acceleration[axis],
-      fMin_hz: planned.band_hz[0],
-      fMax_hz: planned.band_hz[1],
+      fMin_hz: band_hz[0],
+      fMax_hz: band_hz[1],
     });
   } catch {
     return null;
   }
   const nyquist = result.sampleRate_hz / 2;
-  const top = Math.min(nyquist, Number.isFinite(planned.band_hz[1]) ? planned.band_hz[1] * 1.3 : nyquist);
+  const top = Math.min(nyquist, Number.isFinite(band_hz[1]) ? band_hz[1] * 1.3 : nyquist);
   const bins = Math.min(result.spectrum.amplitude.length, Math.floor(top / result.spectrum.binHz) + 1);
   const { x, y } = decimateMax(result.spectrum.amplitude.subarray(0, bins), result.spectrum.binHz, SPECTRUM_POINTS);
   return {
@@ -190,7 +213,7 @@ function analyse(maxl: Maxl, sensors: SensorTrace[], motion: TestMotion, planned
     rms_mm_s2: result.rmsError,
     peak_hz: result.peak?.frequency_hz ?? NaN,
     peakAmplitude: result.peak?.amplitude ?? NaN,
-    band_hz: [planned.band_hz[0], Math.min(planned.band_hz[1], nyquist)],
+    band_hz: [band_hz[0], Math.min(band_hz[1], nyquist)],
     sampleRate_hz: result.sampleRate_hz,
     spectrumHz: x,
     spectrumAmplitude: y,

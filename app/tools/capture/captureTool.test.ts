@@ -73,6 +73,58 @@ describe('capture tool (worker)', () => {
     await b.sim.stop();
   }, 120_000);
 
+  it('a sweep cut short looks for its peak only in the band it swept, and says so', async () => {
+    // Cancelled at about 20 Hz of a 10–45 Hz sweep, the belt's resonance (27.9 Hz) was never
+    // reached: the record once showed a "peak" found in 10–45 Hz (at 14.6 Hz, 48 % off) with
+    // nothing to say the sweep had not got there.
+    const b = await startMachine(accelRig(), { seed: 4 });
+    await runJob(b, [{ endPosition: [100] }]);
+    const posted: WorkerEvent[] = [];
+    const tool = new CaptureTool(contextFor(b, posted, []));
+    tool.handle({ tool: 'capture', type: 'capture-run', motion: { kind: 'sweep', axis: 'x', fromHz: 10, toHz: 45, hzPerSecond: 5, accelPerHz: 60 } });
+    const t0 = b.scheduler.now();
+    await b.scheduler.advance(2_000_000);
+    tool.handle({ tool: 'capture', type: 'capture-cancel' });
+    let done: CaptureRecord | null = null;
+    for (let k = 0; k < 100 && !done; k++) {
+      await b.scheduler.advance(50_000);
+      const last = captureEvents(posted).find((e) => e.type === 'capture-done');
+      if (last?.type === 'capture-done') done = last.record;
+    }
+    const r = done!;
+    expect(r.cutShort).toBe('cancelled');
+    const a = r.analysis!;
+    // The sweep rises at 5 Hz/s: about 10 + 5 · 2 = 20 Hz when cancelled.
+    const reached = 10 + 5 * ((r.end_us - t0) / 1e6);
+    expect(a.band_hz[0]).toBe(10);
+    expect(a.band_hz[1]).toBeGreaterThan(18);
+    expect(a.band_hz[1]).toBeLessThanOrEqual(reached + 0.5);
+    expect(a.band_hz[1]).toBeLessThan(r.simulatorTruth!.truePeak_hz);
+    expect(a.peak_hz).toBeLessThanOrEqual(a.band_hz[1]);
+    expect(r.warnings.join(' ')).toMatch(/Cut short at about (19|20|21)\.\d Hz of the 10–45 Hz sweep: .*resonance above/);
+    await b.sim.stop();
+  }, 120_000);
+
+  it('says what is wrong with a field in the words beside it: an empty one, and one the core refuses', async () => {
+    // An empty “From (Hz)” once read “fromHz: must be a positive number, got null”.
+    const b = await startMachine(accelRig(), { seed: 6 });
+    const posted: WorkerEvent[] = [];
+    const tool = new CaptureTool(contextFor(b, posted, []));
+    const sweep = { kind: 'sweep', axis: 'x', fromHz: 10, toHz: 45, hzPerSecond: 1, accelPerHz: 60 } as const;
+    tool.handle({ tool: 'capture', type: 'capture-run', motion: { ...sweep, fromHz: null as unknown as number } });
+    tool.handle({ tool: 'capture', type: 'capture-run', motion: { ...sweep, toHz: 10 } });
+    tool.handle({ tool: 'capture', type: 'capture-run', motion: { kind: 'growing', axis: 'x', grow: 'speed', stroke_mm: 20, from: 20, to: 150, steps: NaN } });
+    await b.scheduler.advance(100_000);
+    const failures = captureEvents(posted).map((e) => (e.type === 'capture-failed' ? e.message : ''));
+    expect(failures).toEqual([
+      'Cannot capture: From (Hz) is empty: type a number.',
+      'Cannot capture: To (Hz): must be above “From (Hz)” (10 Hz), got 10 Hz',
+      'Cannot capture: Strokes is empty: type a number.',
+    ]);
+    expect(b.maxl.queue.size).toBe(0);
+    await b.sim.stop();
+  }, 60_000);
+
   it('refuses a motion longer than the as-planned history keeps, and one outside the soft limits, moving nothing', async () => {
     const b = await startMachine(accelRig(), { seed: 5, maxl: { historyLimit: 100 } });
     const posted: WorkerEvent[] = [];
@@ -84,7 +136,7 @@ describe('capture tool (worker)', () => {
     const failures = captureEvents(posted).filter((e) => e.type === 'capture-failed');
     expect(failures.map((e) => (e.type === 'capture-failed' ? e.message : ''))).toEqual([
       expect.stringMatching(/keeps 100 segments/),
-      expect.stringMatching(/stroke_mm: a 500 mm stroke/),
+      expect.stringMatching(/Stroke \(mm\): a 500 mm stroke/),
     ]);
     expect(b.maxl.queue.size).toBe(0);
     expect(b.maxl.nextMoveStart[0]).toBe(position);

@@ -18,6 +18,7 @@ import type { SpringParameters } from '../../../core/sim/plant/springResponse.ts
 import { buildRecord, type RecordInput } from './buildRecord.ts';
 import { recordTransferables, type CaptureCommand, type CaptureEvent, type CaptureRecord } from './protocol.ts';
 import { saveCapture } from './captureDb.ts';
+import { emptyField, motionErrorWords } from './motionFields.ts';
 
 const OWNER = 'capture';
 /** Ringing recorded after the motion ends, µs. */
@@ -96,11 +97,13 @@ export class CaptureTool implements WorkbenchTool<CaptureCommand> {
     if (this.run) return this.ctx.log('warning', 'CAPTURE_BUSY', 'A capture is running: cancel it first.');
     if (!maxl || this.ctx.phase !== 'ready') return this.fail(`Cannot capture: the machine is ${this.ctx.phase}.`);
     if (maxl.captures.size === 0) return this.fail('Cannot capture: no sensor on this machine has sent samples (it needs a sensor reader, such as the Accelerometer example).');
+    const empty = emptyField(motion);
+    if (empty) return this.fail(`Cannot capture: ${empty} is empty: type a number.`);
     let planned: PlannedMotion;
     try {
       planned = planTestMotion(motion, limitsAlong(maxl.config, motion.axis), maxl.nextMoveStart);
     } catch (err) {
-      return this.fail(`Cannot capture: ${err instanceof TestMotionError || err instanceof Error ? err.message : String(err)}`);
+      return this.fail(`Cannot capture: ${err instanceof TestMotionError ? motionErrorWords(err) : err instanceof Error ? err.message : String(err)}`);
     }
     const history = maxl.history.capacity;
     if (planned.moves.length >= history) {

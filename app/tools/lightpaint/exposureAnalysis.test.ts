@@ -5,7 +5,8 @@
  */
 import { describe, expect, it } from 'vitest';
 import { analyseColumns, exposureEvenness, type ExposureChannel } from './exposureAnalysis.ts';
-import { exposureFrame } from './exposureFrame.ts';
+import { exposureFrame, fullScaleFor, linearToSrgb, srgbToLinear } from './exposureFrame.ts';
+import { ledColour } from './ledColour.ts';
 import type { RasterLayout } from './raster.ts';
 
 const MM_PER_PX = 0.5;
@@ -76,5 +77,24 @@ describe('exposure frame', () => {
     const f = exposureFrame(image, 2, 2, 0.5, [0, 0], 0.5);
     expect(Array.from(f.rgba.subarray(0, 4))).toEqual([255, 0, 0, 255]);
     expect(Array.from(f.rgba.subarray(8, 12))).toEqual([0, 0, 0, 255]);
+  });
+
+  it('shows the colour picked: the PWM values (linear light) are encoded in sRGB, as a camera writes them', () => {
+    // #ffa040 at gamma 2.2 lights the LED at PWM (255, 91, 12). Shown as those bytes, the
+    // photo was red-orange, not the orange picked; sRGB-encoded it is (255, 161, 61): within
+    // 4 of the pick (the 8-bit PWM's step at 12 and γ 2.2 against sRGB's curve).
+    const picked = [0xff, 0xa0, 0x40] as const;
+    const pwm = ledColour(picked, 1, 2.2);
+    expect(pwm).toEqual([255, 91, 12]);
+    const fullScale = fullScaleFor(pwm, 0.5, 100);
+    // A lit LED passing at cruise leaves pwm · px / v on its row.
+    const image = Float32Array.from(pwm.map((c) => (c * 0.5) / 100));
+    const f = exposureFrame(image, 1, 1, 0.5, [0, 0], fullScale);
+    for (let c = 0; c < 3; c++) expect(Math.abs(f.rgba[c] - picked[c])).toBeLessThanOrEqual(4);
+    // Half the light is not half the byte: the encoding is sRGB's, and srgbToLinear undoes it.
+    const half = exposureFrame(Float32Array.of(0.5 * image[0], 0, 0), 1, 1, 0.5, [0, 0], fullScale);
+    expect(half.rgba[0]).toBe(Math.round(255 * linearToSrgb(0.5)));
+    expect(srgbToLinear(half.rgba[0] / 255)).toBeCloseTo(0.5, 2);
+    for (let k = 0; k <= 255; k++) expect(Math.round(255 * linearToSrgb(srgbToLinear(k / 255)))).toBe(k);
   });
 });

@@ -95,11 +95,12 @@ export class LightpaintStore {
     if (sink && this.lastFrame) sink.show(this.lastFrame, this.plan);
   }
 
-  paint(name: string, bitmap: Bitmap): void {
+  /** `widthFixed`: an image, whose width in mm the pitch does not change (its aspect is kept). */
+  paint(name: string, bitmap: Bitmap, widthFixed = false): void {
     this.problem = null;
     const lit = bitmap.lit.slice();
     this.wb.send(
-      { tool: 'lightpaint', type: 'paint', request: { name, width: bitmap.width, height: bitmap.height, lit, settings: $state.snapshot(this.settings) } },
+      { tool: 'lightpaint', type: 'paint', request: { name, width: bitmap.width, height: bitmap.height, lit, settings: $state.snapshot(this.settings), widthFixed } },
       [lit.buffer],
     );
   }

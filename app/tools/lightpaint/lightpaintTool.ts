@@ -137,7 +137,7 @@ export class LightpaintTool implements WorkbenchTool<LightpaintCommand> {
     const colour = ledColour(rgb, s.brightness, s.gamma);
     const plan = planRaster(
       bitmap,
-      { speed: s.speed, pitch_mm: s.pitch_mm, colour, reverse: s.reverse, evaluationPrecision_ms: s.evaluationPrecision_ms },
+      { speed: s.speed, pitch_mm: s.pitch_mm, colour, reverse: s.reverse, evaluationPrecision_ms: s.evaluationPrecision_ms, widthFixed: request.widthFixed === true },
       rasterMachine(maxl.config, this.ctx.origin),
     );
     if (isProblem(plan)) {

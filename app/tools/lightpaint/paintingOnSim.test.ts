@@ -133,3 +133,44 @@ describe('pausing mid-pass', () => {
     await b.sim.stop();
   }, 120_000);
 });
+
+describe('cancelling or pausing a slow pass', () => {
+  // A pass slower than a few mm/s once ran on for many seconds after Cancel or Pause
+  // (at 2 mm/s Cancel took 54 s and the tool went on 30 mm): each 20 mm piece was
+  // locked whole once sent. Pieces now last at most PASS_PIECE_S at the pass's speed.
+  for (const [speed, action] of [
+    [1, 'cancel'],
+    [2, 'cancel'],
+    [2, 'pause'],
+    [20, 'cancel'],
+  ] as const) {
+    it(`at ${speed} mm/s, ${action} brings the tool to rest within half a second, where it was`, async () => {
+      const b = await startMachine(lightPainter());
+      const plan = planRaster(textBitmap('HI', 8), settings(speed), rasterMachine(b.maxl.config, [20, 100]));
+      if (isProblem(plan)) throw new Error(plan.error);
+      for (const m of plan.moves) await settle(b.scheduler, b.maxl.addSegmentToQueue(m), 1_000_000);
+      const tool = () => {
+        b.sim.sync();
+        return b.sim.plant.toolXY();
+      };
+      // Run until the tool is 2 mm into the picture, then press Cancel (or Pause). The
+      // travel from home to the start runs at the top speed (once at the painting speed:
+      // 100 s at 1 mm/s), so a few seconds are enough.
+      const deadline = b.scheduler.now() + 5_000_000 + 3_000_000 / speed;
+      while (!(tool()[0] >= plan.layout.x0 + 2 && Math.abs(tool()[1] - 100) < 0.1)) {
+        if (b.scheduler.now() > deadline) throw new Error('the pass never reached the picture');
+        await b.scheduler.advance(10_000);
+      }
+      const pressedAt = tool()[0];
+      const t0 = b.scheduler.now();
+      await settle(b.scheduler, action === 'cancel' ? b.maxl.cancel() : b.maxl.pause(), 60_000_000);
+      const took_s = (b.scheduler.now() - t0) / 1e6;
+      await b.scheduler.advance(500_000);
+      const restsAt = tool()[0];
+      expect(took_s).toBeLessThan(0.5);
+      // At speed v it runs on at most v · 0.5 s, plus the belt's give.
+      expect(restsAt - pressedAt).toBeLessThan(speed * 0.5 + 0.2);
+      await b.sim.stop();
+    }, 120_000);
+  }
+});

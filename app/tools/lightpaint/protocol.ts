@@ -33,6 +33,8 @@ export interface PaintRequest {
   /** width × height, 1 lit, row 0 at the top; its buffer is transferred. */
   lit: Uint8Array;
   settings: PaintSettings;
+  /** An image, its aspect kept: its width in mm does not change with the pitch (raster.ts RasterSettings.widthFixed). */
+  widthFixed?: boolean;
 }
 
 export type LightpaintCommand =

@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import type { EvaluatorState, LinearMove, EventEvaluatorSpec } from '../../../core/index.ts';
 import { textBitmap } from './bitmap.ts';
-import { PASS_PIECE_MM, bitmapEvaluator, columnAt, isProblem, planRaster, runUpLength, type RasterMachine, type RasterPlan, type RasterSettings } from './raster.ts';
+import { PASS_PIECE_MM, PASS_PIECE_S, bitmapEvaluator, columnAt, isProblem, planRaster, runUpLength, type RasterMachine, type RasterPlan, type RasterSettings } from './raster.ts';
 
 const machine: RasterMachine = {
   motionAxes: ['x', 'y'],
@@ -60,6 +60,24 @@ describe('raster', () => {
     expect((events[0] as EventEvaluatorSpec).evaluationPrecision).toBe(0.5);
   });
 
+  it('a slow pass is queued in pieces of at most PASS_PIECE_S, and the travel to its start runs at the top speed', () => {
+    for (const speed of [0.5, 2, 20, 100, 200]) {
+      const plan = planRaster(textBitmap('HI', 8), { ...settings, speed }, machine) as RasterPlan;
+      const [travel, ...pieces] = plan.moves as LinearMove[];
+      expect(travel.maxVelocity).toBe(machine.maxSpeed);
+      let x = plan.layout.xStart;
+      for (const p of pieces) {
+        const end = (p.endPosition as number[])[0];
+        expect(end - x).toBeLessThanOrEqual(Math.min(PASS_PIECE_MM, speed * PASS_PIECE_S) + 1e-9);
+        expect(p.maxVelocity).toBe(speed);
+        x = end;
+      }
+      expect(x).toBeCloseTo(plan.layout.xEnd, 9);
+    }
+    // At 2 mm/s, 0.4 mm pieces: 22.2 mm in 56.
+    expect((planRaster(textBitmap('HI', 8), { ...settings, speed: 2 }, machine) as RasterPlan).moves).toHaveLength(1 + 56);
+  });
+
   it('reversed, the pass runs right to left over the same span', () => {
     const plan = planRaster(textBitmap('HI', 8), { ...settings, reverse: true }, machine) as RasterPlan;
     const moves = plan.moves as LinearMove[];
@@ -85,6 +103,19 @@ describe('raster', () => {
     const fitted = planRaster(wide, { ...settings, pitch_mm: r.fitPitch_mm! }, machine);
     expect(isProblem(fitted)).toBe(false);
     if (!isProblem(fitted)) expect(fitted.layout.xEnd).toBeLessThanOrEqual(300);
+  });
+
+  it('an image too wide is never offered a pitch: its aspect is kept, so a finer pitch only adds columns', () => {
+    // 2000 × 100 px at the strip's 8 × 6.4 mm: 1024 mm wide at any pitch. It was offered
+    // “a pitch of 0.58 mm”, which made it 1765 columns and just as wide (and so on down).
+    const image = { width: 512, height: 8, lit: new Uint8Array(512 * 8).fill(1) };
+    const r = planRaster(image, { ...settings, widthFixed: true }, machine);
+    expect(isProblem(r)).toBe(true);
+    if (!isProblem(r)) return;
+    expect(r.fitPitch_mm).toBeUndefined();
+    expect(r.error).toMatch(/1024\.2 mm along x/);
+    expect(r.error).toMatch(/crop the image/);
+    expect(r.error).not.toMatch(/pitch of/);
   });
 
   it('refuses a machine without the bitmap channel, and bad settings', () => {

@@ -44,10 +44,20 @@ export const COLOUR_CHANNEL = 'neopixelColour';
 export const CRUISE_CHANNEL = 'neopixelCruise';
 
 /**
- * mm: the pass is queued in pieces no longer than this. A queued segment runs to
- * its end once sent, so the pieces bound how far a pause or cancel runs on.
+ * The pass is queued in pieces no longer than PASS_PIECE_MM and no longer than
+ * PASS_PIECE_S at its speed: a queued segment may run to its end once sent (the
+ * streamer slices long ones only where a slice is long enough to split off, which
+ * at a few mm/s it is not), so the pieces bound how far a pause or cancel runs on,
+ * in time as in mm: 0.2 s at any speed (20 mm pieces at 100 mm/s; at 2 mm/s a
+ * 20 mm piece ran on for 10 s after Cancel).
  */
 export const PASS_PIECE_MM = 20;
+export const PASS_PIECE_S = 0.2;
+
+/** mm: the longest piece of a pass at `speed` mm/s. */
+export function passPieceLength(speed: number): number {
+  return Math.min(PASS_PIECE_MM, speed * PASS_PIECE_S);
+}
 
 /** ms between evaluator samples: ±0.05 mm of column edge at 200 mm/s. */
 export const DEFAULT_EVALUATION_PRECISION_MS = 0.5;
@@ -63,6 +73,12 @@ export interface RasterSettings {
   reverse: boolean;
   /** ms between evaluator samples. */
   evaluationPrecision_ms: number;
+  /**
+   * The picture's width in mm does not depend on the pitch: an image, its aspect kept
+   * (imageBitmap.ts makes w/h · LEDs · spacing / pitch columns). A finer pitch then only
+   * adds columns, so a picture too wide is never offered one.
+   */
+  widthFixed?: boolean;
 }
 
 /** What the planner needs of the machine. */
@@ -165,14 +181,17 @@ export function planRaster(bitmap: Bitmap, s: RasterSettings, m: RasterMachine):
   const room = m.softMax[0] - ox;
   if (ox < m.softMin[0] || total > room) {
     const missing = total - room;
-    const fit = fitPitch(n, room, speed, m.maxAccel);
+    const fit = s.widthFixed ? null : fitPitch(n, room, speed, m.maxAccel);
     const fitPitch_mm = fit !== null && fit < s.pitch_mm ? fit : undefined;
+    const shorten = s.widthFixed
+      ? 'crop the image (its aspect is kept on the machine, so a finer pitch only adds columns)'
+      : 'shorten the picture';
     return {
       error:
         ox < m.softMin[0]
           ? `The origin (x = ${ox} mm) is outside the soft limits [${m.softMin[0]}, ${m.softMax[0]}] mm.`
           : `The pass needs ${total.toFixed(1)} mm along ${axis} (${n} columns × ${s.pitch_mm} mm and ${runUp} mm of run-up and run-down each side), but only ${Math.max(0, room).toFixed(1)} mm lie between the origin and the soft limit at ${m.softMax[0]} mm: ${missing.toFixed(1)} mm missing. ` +
-            (total <= m.softMax[0] - m.softMin[0] ? `Set the origin at ${axis} ≤ ${(m.softMax[0] - total).toFixed(1)} mm, shorten the picture` : `It is longer than the whole ${axis} range: shorten the picture`) +
+            (total <= m.softMax[0] - m.softMin[0] ? `Set the origin at ${axis} ≤ ${(m.softMax[0] - total).toFixed(1)} mm, ${shorten}` : `It is longer than the whole ${axis} range: ${shorten}`) +
             (fitPitch_mm ? `, or use a pitch of ${fitPitch_mm} mm.` : '.'),
       fitPitch_mm,
     };
@@ -195,10 +214,12 @@ export function planRaster(bitmap: Bitmap, s: RasterSettings, m: RasterMachine):
     { name: BITMAP_CHANNEL, evaluationPrecision: s.evaluationPrecision_ms, evaluator: bitmapEvaluator(layout, axis, 0, s.evaluationPrecision_ms) },
     ...fixed,
   ];
-  const moves: Move[] = [{ endPosition: at(from), maxVelocity: speed, eventChannels: travelEvents }];
+  // The travel to the start, strip dark, at the machine's top speed (LightBurn's
+  // travel moves): at the painting speed a slow picture's travel took minutes.
+  const moves: Move[] = [{ endPosition: at(from), maxVelocity: m.maxSpeed, eventChannels: travelEvents }];
   // The pass in collinear pieces (no slowing at their joints), each setting the same
   // channels: a pause or a cancel brakes within a piece or two instead of at the end.
-  const pieces = Math.max(1, Math.ceil(total / PASS_PIECE_MM));
+  const pieces = Math.max(1, Math.ceil(total / passPieceLength(speed) - 1e-9));
   for (let k = 1; k <= pieces; k++) {
     const x = k === pieces ? to : from + ((to - from) * k) / pieces;
     moves.push({ endPosition: at(x), maxVelocity: speed, eventChannels: rasterEvents });
