@@ -23,6 +23,27 @@ async function bedMapping(page: Page): Promise<(x: number, y: number) => [number
   return (x, y) => [box.x + ox + (x - minX) * scale, box.y + oy + (y - minY) * scale];
 }
 
+/** Opens the workbench and switches to the simulated Blot plotter, ready. */
+async function openBlot(page: Page): Promise<void> {
+  await openWorkbench(page);
+  await page.getByTestId('machine-menu').click();
+  await page.getByTestId('preset-blotPlotter').click();
+  await expect(page.locator('[data-testid=log-entry][data-code=SIM]').last()).toContainText('blotPlotter');
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+}
+
+/** Presses the mouse at the stroke's first point (mm) and moves through the rest, 15 ms apart; the pointer stays down. */
+async function pressAndMove(page: Page, toPx: (x: number, y: number) => [number, number], stroke: Array<[number, number]>): Promise<void> {
+  const [sx, sy] = toPx(...stroke[0]);
+  await page.mouse.move(sx, sy);
+  await page.mouse.down();
+  for (const p of stroke.slice(1)) {
+    const [x, y] = toPx(...p);
+    await page.mouse.move(x, y);
+    await page.waitForTimeout(15);
+  }
+}
+
 async function toolAt(page: Page): Promise<[number, number]> {
   const s = page.getByTestId('plotter-status');
   return [Number(await s.getAttribute('data-tool-x')), Number(await s.getAttribute('data-tool-y'))];
@@ -31,11 +52,7 @@ async function toolAt(page: Page): Promise<[number, number]> {
 test('a stroke drawn with the mouse: the machine follows before the pointer lifts, and its ink matches the stroke', async ({ page }) => {
   // 120 real mouse moves, each waiting for a frame: slow on a busy machine.
   test.setTimeout(150_000);
-  await openWorkbench(page);
-  await page.getByTestId('machine-menu').click();
-  await page.getByTestId('preset-blotPlotter').click();
-  await expect(page.locator('[data-testid=log-entry][data-code=SIM]').last()).toContainText('blotPlotter');
-  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await openBlot(page);
   await page.getByTestId('tab-plotter').click();
   await expect(page.getByTestId('plotter-pen')).toContainText('pen');
   const toPx = await bedMapping(page);
@@ -111,24 +128,13 @@ test('a stroke drawn with the mouse: the machine follows before the pointer lift
 test('switching tab mid-stroke ends the stroke where the pointer left the bed: nothing drawn that was not drawn', async ({ page }) => {
   // A second finger on a tablet, or the keyboard, can switch tabs while the pointer is still down.
   test.setTimeout(90_000);
-  await openWorkbench(page);
-  await page.getByTestId('machine-menu').click();
-  await page.getByTestId('preset-blotPlotter').click();
-  await expect(page.locator('[data-testid=log-entry][data-code=SIM]').last()).toContainText('blotPlotter');
-  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await openBlot(page);
   await page.getByTestId('tab-plotter').click();
   await expect(page.getByTestId('plotter-pen')).toContainText('pen');
   const toPx = await bedMapping(page);
 
   const stroke: Array<[number, number]> = Array.from({ length: 11 }, (_, k) => [20 + 3 * k, 100]);
-  const [sx, sy] = toPx(...stroke[0]);
-  await page.mouse.move(sx, sy);
-  await page.mouse.down();
-  for (const p of stroke.slice(1)) {
-    const [x, y] = toPx(...p);
-    await page.mouse.move(x, y);
-    await page.waitForTimeout(15);
-  }
+  await pressAndMove(page, toPx, stroke);
   // The tab changes under the pointer (a click from script: the mouse is still down on the bed).
   await page.evaluate(() => (document.querySelector('[data-testid=tab-plot-files]') as HTMLElement).click());
   await page.mouse.move(500, 300);
@@ -151,11 +157,7 @@ test('switching tab mid-stroke ends the stroke where the pointer left the bed: n
 
 test('a stroke drawn while a file plots is refused, said beside the bed, and kept whole on it as not drawn', async ({ page }) => {
   test.setTimeout(90_000);
-  await openWorkbench(page);
-  await page.getByTestId('machine-menu').click();
-  await page.getByTestId('preset-blotPlotter').click();
-  await expect(page.locator('[data-testid=log-entry][data-code=SIM]').last()).toContainText('blotPlotter');
-  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await openBlot(page);
   await page.getByTestId('tab-plot-files').click();
   await page.getByTestId('plot-file-input').setInputFiles('e2e/fixtures/plot-shapes.svg');
   await expect(page.getByTestId('file-plot')).toBeEnabled();
@@ -167,14 +169,7 @@ test('a stroke drawn while a file plots is refused, said beside the bed, and kep
   await expect(page.getByTestId('plotter-status')).toContainText('A job runs (“plot-shapes.svg”): a stroke is refused until it ends');
   const toPx = await bedMapping(page);
   const stroke: Array<[number, number]> = Array.from({ length: 16 }, (_, k) => [20 + 2 * k, 100]);
-  const [sx, sy] = toPx(...stroke[0]);
-  await page.mouse.move(sx, sy);
-  await page.mouse.down();
-  for (const p of stroke.slice(1)) {
-    const [x, y] = toPx(...p);
-    await page.mouse.move(x, y);
-    await page.waitForTimeout(15);
-  }
+  await pressAndMove(page, toPx, stroke);
   await page.mouse.up();
   // The page once dropped the stroke at the refusal (a grey dot stayed on the bed) and said nothing beside it;
   // only the log, below, named the job.
