@@ -34,6 +34,16 @@ describe('textBitmap', () => {
   it('refuses empty text, missing glyphs and a strip too short, saying which', () => {
     expect(() => textBitmap('   ', 8)).toThrow(BitmapError);
     expect(() => textBitmap('A€B', 8)).toThrow(/“€”/);
+  });
+
+  it('draws a letter the font lacks as LED signs do: without its accents, or in its capitals', () => {
+    const same = (typed: string, drawn: string) => expect(Array.from(textBitmap(typed, 8).lit)).toEqual(Array.from(textBitmap(drawn, 8).lit));
+    same('Café', 'CAFE');
+    same('ÉLAN Ñandú', 'ELAN NANDU');
+    same('Straße', 'STRASSE');
+    // Only what cannot be drawn so is refused, and named.
+    expect(() => textBitmap('Crème €5 Æ', 8)).toThrow('The font has no “€”, “Æ”: use letters, digits and common punctuation.');
+    expect(() => textBitmap('hi 🙂', 8)).toThrow(/“🙂”/);
     expect(() => textBitmap('A', 6)).toThrow(/at least 7/);
   });
   it('draws twice as large on a 14-LED strip', () => {

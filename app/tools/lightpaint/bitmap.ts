@@ -29,16 +29,19 @@ export function isLit(b: Bitmap, row: number, col: number): boolean {
 
 /**
  * Typed text in the 5 × 7 font, one dark column between letters. On a strip of
- * 14 LEDs or more the letters are drawn `floor(height / 7)` times larger.
+ * 14 LEDs or more the letters are drawn `floor(height / 7)` times larger. A
+ * letter the font lacks is drawn as LED signs draw it, from letters it has: its
+ * capitals (ß as SS), or without its accents (É as E, ñ as N).
  * Throws a BitmapError for empty text, a strip shorter than 7 LEDs, or
- * characters the font lacks (naming them).
+ * characters the font cannot draw so (naming them).
  */
 export function textBitmap(text: string, height: number): Bitmap {
-  const chars = Array.from(text.replace(/\s+/g, ' ').trim());
-  if (chars.length === 0) throw new BitmapError('Type some text to paint.');
+  const typed = Array.from(text.replace(/\s+/g, ' ').trim());
+  if (typed.length === 0) throw new BitmapError('Type some text to paint.');
   if (height < GLYPH_HEIGHT) throw new BitmapError(`The strip has ${height} LEDs; text needs at least ${GLYPH_HEIGHT}.`);
-  const missing = [...new Set(chars.filter((c) => !hasGlyph(c)))];
+  const missing = [...new Set(typed.filter((c) => drawnAs(c) === null))];
   if (missing.length > 0) throw new BitmapError(`The font has no ${missing.map((c) => `“${c}”`).join(', ')}: use letters, digits and common punctuation.`);
+  const chars = typed.flatMap((c) => drawnAs(c) as string[]);
   const scale = Math.floor(height / GLYPH_HEIGHT);
   const advance = (GLYPH_WIDTH + LETTER_SPACING) * scale;
   const width = chars.length * advance - LETTER_SPACING * scale;
@@ -52,6 +55,16 @@ export function textBitmap(text: string, height: number): Bitmap {
     }
   });
   return out;
+}
+
+/** The font's characters that draw `ch`: itself, its capitals, or itself without accents; null if none does. */
+function drawnAs(ch: string): string[] | null {
+  if (hasGlyph(ch)) return [ch];
+  const capitals = Array.from(ch.toUpperCase());
+  if (capitals.length > 1 && capitals.every(hasGlyph)) return capitals;
+  const bare = Array.from(ch.normalize('NFD').replace(/\p{M}+/gu, ''));
+  if (bare.length > 0 && bare.join('') !== ch && bare.every(hasGlyph)) return bare;
+  return null;
 }
 
 /** The bitmap `times` times side by side. */
