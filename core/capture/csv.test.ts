@@ -67,6 +67,13 @@ describe('capture CSV', () => {
     }
   });
 
+  it('counts t_s from start_us when given (the capture\'s start), else from the first sample', () => {
+    const capture = captureWithGap();
+    const column = (start_us?: number) => csvParseRows(captureToCsv(capture, { sample: plan, motionAxes: ['x'], start_us })).slice(1).map((r) => [Number(r[0]), Number(r[1])]);
+    for (const [t_s, author_us] of column()) expect(t_s).toBeCloseTo((author_us - 1000) / 1e6, 12);
+    for (const [t_s, author_us] of column(-500)) expect(t_s).toBeCloseTo((author_us + 500) / 1e6, 12);
+  });
+
   it('neutralises channel and reader names that could be read as formulas', () => {
     const hostile = ['=HYPERLINK("http://x","y")', '+1+2'];
     const capture = captureWithGap('-2+3');

@@ -2,7 +2,8 @@
  * CSV export of a capture (d3-dsv, through csvSafe.ts so no cell reads as a formula):
  * one row per sample received, joined with the plan at its author time.
  *
- *   t_s               seconds from the first sample (author clock)
+ *   t_s               seconds from `start_us` (the capture's start: the plot's zero), or from
+ *                     the first sample when none is given (author clock)
  *   author_us         the sample's author time, µs: its device stamp through the clock model
  *   device_us         the device's own u32 µs stamp, as it came
  *   batch             the SAMPLES batch it came in (the wire's u16 number, unwrapped)
@@ -43,6 +44,8 @@ export interface CsvOptions {
   motionAxes: readonly string[];
   /** names of the capture's channels, e.g. ['ax', 'ay', 'az'] (default: reader name and index) */
   channelNames?: readonly string[];
+  /** Author µs that t_s counts from: the capture's start, so that t_s is the time its plot shows (default: the first sample's). */
+  start_us?: number;
 }
 
 /** The CSV's column names, in order. */
@@ -84,7 +87,7 @@ export function* captureCsvChunks(capture: CaptureColumns, options: CsvOptions, 
   const seq = capture.sequenceColumn();
   const channels = Array.from({ length: capture.channels }, (_, c) => capture.channel(c));
   const lostBefore = lostBeforeIndex(capture.gaps);
-  const t0 = times.length > 0 ? times[0] : 0;
+  const t0 = options.start_us ?? (times.length > 0 ? times[0] : 0);
   yield formatSafeCsvLines([captureCsvColumns(capture, options)]);
   for (let from = 0; from < times.length; from += rowsPerChunk) {
     const rows: CsvCell[][] = [];

@@ -43,7 +43,7 @@ export function plannedAt(trace: SensorTrace, k: number): TrajectorySample | nul
 export function recordCsvChunks(record: CaptureRecord, sensor = 0, rowsPerChunk = CSV_ROWS_PER_CHUNK): Generator<string, void, void> {
   const trace = record.sensors[sensor];
   if (!trace) throw new RangeError(`the capture has no sensor ${sensor} (it has ${record.sensors.length})`);
-  return captureCsvChunks(traceColumns(trace), { sample: (_t, k) => plannedAt(trace, k), motionAxes: record.axes, channelNames: trace.channelNames }, rowsPerChunk);
+  return captureCsvChunks(traceColumns(trace), { sample: (_t, k) => plannedAt(trace, k), motionAxes: record.axes, channelNames: trace.channelNames, start_us: record.start_us }, rowsPerChunk);
 }
 
 export function recordCsv(record: CaptureRecord, sensor = 0): string {

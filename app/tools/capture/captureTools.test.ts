@@ -135,4 +135,12 @@ describe('record exports', () => {
     expect(side.samplesLost).toBe(2);
     expect(side.clockSyncError_us).toBe(5);
   });
+
+  it("the CSV's t_s is the time the plot shows: seconds from the capture's start, not from its first sample", () => {
+    // The capture started 1.75 ms before its first sample came (as on the simulated rig).
+    const r = { ...record(), start_us: 1000 - 1750 };
+    const t_s = csvParseRows(recordCsv(r)).slice(1).map((row) => Number(row[0]));
+    expect(t_s).toEqual(Array.from(measuredCurve(r, 0, 0).t));
+    expect(t_s[0]).toBeCloseTo(0.00175, 12);
+  });
 });
