@@ -25,7 +25,7 @@ import path from 'node:path';
 import { burnerSettings, startCpuBurners, stopCpuBurners } from './support/cpuBurners.ts';
 import { startFakeBoards, stopFakeBoards, type FakeBoards } from './support/fakeBoards.ts';
 import type { FakeSerialControl } from './support/fakeSerial.ts';
-import { screenshot } from './support/workbench.ts';
+import { dataNumber, screenshot, startJob } from './support/workbench.ts';
 
 const FAKE_PAGE_MODULE = `/@fs${path.resolve('e2e/support/fakeSerial.ts')}`;
 const FAKE_WORKER_MODULE = `/@fs${path.resolve('e2e/support/fakeSerialInWorker.ts')}`;
@@ -182,6 +182,49 @@ test('a board added while the simulated machine still starts replaces it, alone'
   await expect(devices.nth(0)).toHaveAttribute('data-name', 'motorA');
   await expect(page.getByTestId('machine-menu')).toContainText('Boards');
   expect((await truth(page)).opened).toEqual(['motorA']);
+});
+
+/**
+ * The worker streams the boards and also reads and plans the plotter's files: a file
+ * of 20 000 paths held it for about a second, and a job running on the boards then
+ * starved ("the author's next pump came 926 ms after the one before") and every board
+ * braked to rest. Now a file opened while the boards are streamed waits, said over the
+ * preview, and is read once the machine rests; the job runs on meanwhile.
+ */
+test('a big file opened while a job streams to the boards waits for the machine to rest, and the job runs on', async ({ page }) => {
+  test.setTimeout(120_000);
+  await installFake(page);
+  await page.goto('/');
+  await expect(page.getByTestId('phase')).toHaveText('ready', { timeout: 30_000 });
+  await addThreeBoards(page, 'the worker owns its streams');
+  await startJob(page, { pattern: 'zigzag', segments: 2000, size: 60, speed: 40 });
+  await expect.poll(() => dataNumber(page, 'job-progress', 'data-done'), { timeout: 30_000 }).toBeGreaterThan(5);
+
+  let seed = 1;
+  const random = () => (seed = (seed * 16807) % 2147483647) / 2147483647;
+  const paths: string[] = [];
+  for (let i = 0; i < 20_000; i++) paths.push(`<path d="M${(1 + 98 * random()).toFixed(2)} ${(1 + 98 * random()).toFixed(2)} l${(random() - 0.5).toFixed(2)} ${(random() - 0.5).toFixed(2)}"/>`);
+  const svg = `<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="0 0 100 100">\n${paths.join('\n')}\n</svg>\n`;
+  await page.getByTestId('tab-plot-files').click();
+  await page.getByTestId('plot-file-input').setInputFiles({ name: 'dense.svg', mimeType: 'image/svg+xml', buffer: Buffer.from(svg) });
+  const working = page.getByTestId('file-working');
+  await expect(working).toHaveAttribute('data-what', 'waiting');
+  await expect(working).toContainText('“dense.svg” is read and planned once the machine rests');
+  // The job runs on, nothing braked: three more seconds of progress.
+  const done = await dataNumber(page, 'job-progress', 'data-done');
+  await page.waitForTimeout(3000);
+  expect(await dataNumber(page, 'job-progress', 'data-done')).toBeGreaterThan(done);
+  await expect(page.getByTestId('phase')).toHaveText('running');
+  await expect(page.locator('[data-testid=log-entry][data-code=LINK_LOST]')).toHaveCount(0);
+  await expect(working).toHaveAttribute('data-what', 'waiting');
+
+  // The job cancelled, the machine rests: the file is read then.
+  await page.getByTestId('tab-view').click();
+  await page.getByTestId('job-cancel').click();
+  await expect(page.getByTestId('job-progress')).toHaveAttribute('data-phase', 'cancelled', { timeout: 30_000 });
+  await page.getByTestId('tab-plot-files').click();
+  await expect(page.getByTestId('file-summary')).toHaveAttribute('data-paths', '20000', { timeout: 60_000 });
+  await expect(page.locator('[data-testid=log-entry][data-code=LINK_LOST]')).toHaveCount(0);
 });
 
 /**

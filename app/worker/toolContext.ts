@@ -24,6 +24,15 @@ export interface ToolContext {
   readonly origin: readonly number[];
   readonly scheduler: Scheduler;
   /**
+   * Whether real boards are being streamed from this thread now: a job, a jog or a
+   * tool moves them, or motion sent to them has not run out. Work that holds the
+   * thread for long (reading and planning a big file: a second for 20 000 paths)
+   * must wait meanwhile, or the stream falls behind and the boards brake to rest.
+   * Never on a simulated machine, which runs on this thread's paced clock and waits
+   * with it.
+   */
+  readonly streamingToBoards: boolean;
+  /**
    * Takes the machine for `owner`'s motion. False, with a warning in the log that
    * names `what` and the reason, when the machine is not ready, or a job, a jog or
    * another tool moves it. Claiming twice for the same owner is fine.

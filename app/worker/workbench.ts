@@ -453,6 +453,14 @@ export class Workbench implements ToolContext {
     return true;
   }
 
+  /** ToolContext.streamingToBoards. */
+  get streamingToBoards(): boolean {
+    const maxl = this.maxl;
+    if (this.devices.sim || !maxl || this.phase !== 'ready') return false;
+    if (this.jobs.active || this.jog.isHolding || this.toolOwner !== null) return true;
+    return maxl.queue.untransmittedCount > 0 || maxl.queue.transmittedEnd_us > this.scheduler.now();
+  }
+
   /** ToolContext.release. */
   release(owner: string): void {
     if (this.toolOwner === owner) this.toolOwner = null;

@@ -21,6 +21,7 @@ function contextFor(b: Bench, posted: WorkerEvent[], logged: Array<{ level: LogL
     config: b.sim.config as MachineConfig,
     origin: [0],
     scheduler: b.scheduler,
+    streamingToBoards: false,
     claim: (who) => (owner === null || owner === who ? ((owner = who), true) : false),
     release: (who) => {
       if (owner === who) owner = null;

@@ -42,7 +42,7 @@ export class PlotterFileStore {
    * paths takes seconds to read, order and time): reading a file (its name), or
    * planning the one loaded; null when idle.
    */
-  working = $state.raw<{ what: 'reading' | 'planning'; name: string } | null>(null);
+  working = $state.raw<{ what: 'reading' | 'planning' | 'waiting'; name: string } | null>(null);
   private pendingArrangement: Arrangement | null = null;
 
   constructor(private readonly wb: WorkbenchStore) {
@@ -84,6 +84,10 @@ export class PlotterFileStore {
         this.layer = null;
         this.stats = null;
         this.error = null;
+        break;
+      case 'file-waiting':
+        // Read and planned once the machine rests (real boards are streamed meanwhile).
+        this.working = { what: 'waiting', name: e.name };
         break;
       case 'file-plot':
         this.plotResult = { started: e.started, planned_s: e.planned_s, reason: e.reason };

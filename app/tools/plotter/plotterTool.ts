@@ -84,6 +84,7 @@ export class PlotterTool implements WorkbenchTool<PlotterCommand | FileCommand> 
 
   frame(): void {
     this.live.settle();
+    this.files.frame();
     if (this.statusChanged) {
       this.statusChanged = false;
       this.post({ tool: 'plotter', type: 'draw-status', status: this.live.status() });

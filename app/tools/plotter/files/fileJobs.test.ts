@@ -34,6 +34,7 @@ function setup() {
     config,
     origin: [0, 0],
     scheduler: maxl.scheduler,
+    streamingToBoards: false,
     claim: () => true,
     release: () => {},
     startJob: (job: MoveJob) => {
@@ -44,8 +45,10 @@ function setup() {
     post: (e: WorkerEvent) => posted.push(e as FileEvent),
   } as unknown as ToolContext;
   const files = new FileJobs(ctx);
+  /** As the workbench's: real boards streamed (a job runs on them), or not. */
+  const streaming = (on: boolean) => ((ctx as { streamingToBoards: boolean }).streamingToBoards = on);
   const last = <T extends FileEvent['type']>(type: T) => posted.filter((e) => e.type === type).at(-1) as Extract<FileEvent, { type: T }> | undefined;
-  return { files, posted, jobs, logs, last };
+  return { files, posted, jobs, logs, last, streaming };
 }
 
 const svg = readFileSync('e2e/fixtures/plot-shapes.svg', 'utf8');
@@ -71,6 +74,35 @@ describe('FileJobs', () => {
     expect(job.planned_s).toBe(t);
     expect(preview.stats.plotTime_s).toBe(t);
     expect(last('file-plot')).toMatchObject({ started: true, planned_s: t });
+  });
+
+  it('while real boards are streamed, a load and a change of settings wait, said, and run once the stream ends', () => {
+    const { files, posted, last, streaming } = setup();
+    streaming(true);
+    files.handle({ tool: 'plotter', type: 'file-load', name: 'plot-shapes.svg', text: svg, import: IMPORT, plot: PLOT });
+    files.handle({ tool: 'plotter', type: 'file-settings', import: IMPORT, plot: { ...PLOT, drawSpeed: 20 } });
+    // Nothing read or planned on the streaming thread; the page is told why it waits.
+    expect(posted.map((e) => e.type)).toEqual(['file-waiting', 'file-waiting']);
+    expect(last('file-waiting')).toMatchObject({ name: 'plot-shapes.svg' });
+    files.frame();
+    expect(last('file-loaded')).toBeUndefined();
+    // The stream ends: the next frame reads the file and plans it with the settings given last.
+    streaming(false);
+    files.frame();
+    expect(last('file-loaded')?.summary).toMatchObject({ name: 'plot-shapes.svg', paths: 4 });
+    const slow = last('file-preview')!.stats.plotTime_s as number;
+    files.handle({ tool: 'plotter', type: 'file-settings', import: IMPORT, plot: { ...PLOT, drawSpeed: 40 } });
+    expect(last('file-preview')!.stats.plotTime_s).toBeLessThan(slow);
+    files.handle({ tool: 'plotter', type: 'file-settings', import: IMPORT, plot: { ...PLOT, drawSpeed: 20 } });
+    expect(last('file-preview')!.stats.plotTime_s).toBe(slow);
+    // Cleared while a load waits: nothing runs later.
+    streaming(true);
+    files.handle({ tool: 'plotter', type: 'file-load', name: 'other.svg', text: svg, import: IMPORT, plot: PLOT });
+    files.handle({ tool: 'plotter', type: 'file-clear' });
+    streaming(false);
+    const before = posted.length;
+    files.frame();
+    expect(posted.length).toBe(before);
   });
 
   it('a bad file is refused with its line, and the file before it stays', () => {

@@ -7,6 +7,13 @@
  *   file-plot      the job: re-planned from where the pen is now, then ctx.startJob
  *   file-clear     forget the file
  *
+ * Reading and planning run on the worker's thread, which also streams real boards:
+ * a big file (20 000 paths) holds it for a second, and a job running on the boards
+ * meanwhile would starve and brake to rest. So while the boards are streamed
+ * (ToolContext.streamingToBoards) a load or a change of settings waits, said with
+ * `file-waiting`, and runs at the first frame after the machine rests; a newer one
+ * replaces it.
+ *
  * Each plan posts `file-preview`: the strokes and travel in machine mm, the travel
  * before and after ordering, and the exact plot time (plotJob.ts).
  */
@@ -57,10 +64,16 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
   private plan: Plan | null = null;
   /** What is wrong with the settings last given (settingsCheck.ts); no plan while there is something. */
   private settingsProblem: string | null = null;
+  /** A load or a change of settings waiting for the boards' stream to end (see the module comment). */
+  private waiting: Extract<FileCommand, { type: 'file-load' | 'file-settings' }> | null = null;
 
   constructor(private readonly ctx: ToolContext) {}
 
   handle(cmd: FileCommand): void {
+    if ((cmd.type === 'file-load' || cmd.type === 'file-settings') && (this.waiting || this.ctx.streamingToBoards)) {
+      this.wait(cmd);
+      return;
+    }
     switch (cmd.type) {
       case 'file-load':
         this.load(cmd.name, cmd.text, cmd.import, cmd.plot);
@@ -82,6 +95,7 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
         this.plot();
         return;
       case 'file-clear':
+        this.waiting = null;
         this.text = '';
         this.drawing = null;
         this.plan = null;
@@ -103,8 +117,21 @@ export class FileJobs implements WorkbenchTool<FileCommand> {
   /** STOP: a running plot is the job runner's, which halts it; nothing waits here. */
   stopped(): void {}
 
-  /** Nothing changes per frame: the preview is posted when it is planned. */
-  frame(): void {}
+  /** Runs the load or change of settings that waited, once the boards' stream has ended. */
+  frame(): void {
+    const cmd = this.waiting;
+    if (!cmd || this.ctx.streamingToBoards) return;
+    this.waiting = null;
+    this.handle(cmd);
+  }
+
+  /** Keeps `cmd` for when the stream ends, and says so: settings changed after a waiting load go with that load. */
+  private wait(cmd: Extract<FileCommand, { type: 'file-load' | 'file-settings' }>): void {
+    const before = this.waiting;
+    this.waiting = cmd.type === 'file-settings' && before?.type === 'file-load' ? { ...before, import: cmd.import, plot: cmd.plot } : cmd;
+    const name = this.waiting.type === 'file-load' ? this.waiting.name : (this.drawing?.name ?? '');
+    this.post({ tool: 'plotter', type: 'file-waiting', name });
+  }
 
   /** Checks the settings; if something is wrong, says what, drops the plan and returns true. */
   private refusedSettings(imp: ImportSettings, plot: PlotSettings): boolean {

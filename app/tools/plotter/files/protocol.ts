@@ -85,5 +85,11 @@ export type FileEvent =
   | { tool: 'plotter'; type: 'file-error'; stage: 'read' | 'plan'; name: string; message: string; line: number | null }
   | { tool: 'plotter'; type: 'file-preview'; layer: PreviewLayer; stats: PreviewStats }
   | { tool: 'plotter'; type: 'file-cleared' }
+  /**
+   * The file (`name`) is read or planned once the machine rests: real boards are
+   * streamed from the worker, and the work would hold the stream back
+   * (ToolContext.streamingToBoards).
+   */
+  | { tool: 'plotter'; type: 'file-waiting'; name: string }
   /** A plot started (`planned_s` the ETA's basis) or was refused (`reason`). */
   | { tool: 'plotter'; type: 'file-plot'; started: boolean; planned_s: number | null; reason: string | null };
