@@ -70,3 +70,27 @@ test('jog with buttons and keys; hold-to-jog stops on release', async ({ page })
   expect(await dataNumber(page, 'pos-x')).toBe(rest[0]);
   await screenshot(page, '05-jog-stopped');
 });
+
+/**
+ * A careful jog, at 1 mm/s (as when bringing a pen down to the paper): a lead's worth
+ * of path is under the smallest split, and the streamer once locked the whole held
+ * move: released, the tool ran on towards the soft limit (only STOP held it).
+ */
+test('a slow hold-to-jog (1 mm/s) stops on release too', async ({ page }) => {
+  await openWorkbench(page);
+  await page.getByTestId('jog-speed').fill('1');
+  await page.getByTestId('jog-speed').press('Tab');
+  await page.getByTestId('tab-view').click();
+  const start = await waitAtRest(page);
+  await page.keyboard.down('ArrowRight');
+  await expect.poll(() => dataNumber(page, 'pos-x'), { timeout: 20_000 }).toBeGreaterThan(start[0] + 0.5);
+  await page.keyboard.up('ArrowRight');
+  await expect(page.getByTestId('jog-latency')).toBeVisible();
+  const released = await dataNumber(page, 'pos-x');
+  const rest = await waitAtRest(page, 20);
+  // At 1 mm/s it comes to rest within a slice (0.02 mm) and the lead's motion of the release; running on, it
+  // moved 1 mm a second.
+  expect(rest[0] - released).toBeLessThan(0.1);
+  await snapshotsPass(page, 60);
+  expect(await dataNumber(page, 'pos-x')).toBe(rest[0]);
+});

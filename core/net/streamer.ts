@@ -150,7 +150,14 @@ interface DeviceState {
   unanswered: number;
 }
 
+/** No piece of a split is shorter than this, mm. */
 const MIN_SPLIT_MM = 0.01;
+/**
+ * The shortest slice locked of a long segment, mm: a slice reaches a lead and two
+ * slice times ahead, unless that is less path than this (below 2 mm/s or so), so a
+ * cancel comes within max(those times, this distance) of motion, whatever the speed.
+ */
+const MIN_SLICE_MM = 2 * MIN_SPLIT_MM;
 /** Segments the wire log keeps (segmentForWireId, sentInOrder): far more than a device queue holds. */
 const WIRE_LOG = 2048;
 /** Segments nearTailRest() looks at after the next one, at most. */
@@ -512,8 +519,11 @@ export class Streamer {
       const beyond = duration_us > this.lead_us + 2 * slice ? slice : 0;
       const reach = horizon + slice - start > 0 ? horizon + slice - start : beyond;
       if (reach > 0 && duration_us > reach + slice && (last || duration_us > this.options.wholeSegment_us)) {
-        const d = evaluateTiming(next.timing!, reach * 1e-6, { s: 0, v: 0, a: 0 }).s;
-        if (d > MIN_SPLIT_MM && d < next.length - MIN_SPLIT_MM) {
+        // At a few mm/s a lead's worth of path is shorter than the smallest piece worth
+        // a split (MIN_SLICE_MM): slice that much instead, rather than lock the whole
+        // segment (a released jog key at 2 mm/s once ran on to the soft limit).
+        const d = Math.max(evaluateTiming(next.timing!, reach * 1e-6, { s: 0, v: 0, a: 0 }).s, MIN_SLICE_MM);
+        if (d < next.length - MIN_SPLIT_MM) {
           this.queue.splitFront(d);
           continue;
         }

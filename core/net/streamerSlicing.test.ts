@@ -35,6 +35,24 @@ describe('streamer slicing of a long move (hold-to-jog)', () => {
     await sim.stop();
   });
 
+  // At a few mm/s a lead's worth of path is under MIN_SPLIT_MM (0.01 mm): the move was then locked whole, and a
+  // released jog key at 2 mm/s or less ran on to the soft limit (only STOP held it).
+  it.each([0.5, 1, 2])('a slow long move (%s mm/s, a careful jog) is still locked a slice at a time: a cancel stops it within 0.02 mm', async (speed) => {
+    const { scheduler, sim, maxl } = await startMachine(lightPainter());
+    void maxl.addSegmentToQueue({ endPosition: [290, 0], maxVelocity: speed });
+    await scheduler.advance(1_000_000);
+    const x0 = maxl.estimate().position[0];
+    expect(x0).toBeGreaterThan(0.9 * speed);
+    const stopped = maxl.cancel();
+    await scheduler.advance(2_000_000);
+    const x = maxl.estimate().position[0];
+    expect(x - x0).toBeLessThan(0.02 + speed * (maxl.lead_us + 8_000 + 1_000) * 1e-6);
+    expect(maxl.estimate().speed).toBe(0);
+    await stopped;
+    await maxl.end();
+    await sim.stop();
+  });
+
   it('locks the legs of a queued job whole (no slices, no re-sent geometry) when each lasts under wholeSegment_us', async () => {
     const { scheduler, sim, maxl } = await startMachine(lightPainter());
     await maxl.addSegmentToQueue({ endPosition: [10, 10] });
