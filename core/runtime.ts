@@ -73,10 +73,11 @@ export type RuntimeEvent =
   | { type: 'idle' }
   /**
    * Streaming stopped for good after a refusal (by `device`) or a failure of the author's
-   * own (an event evaluator; device null), said by the `error` just before: every device
-   * comes to rest on the path, with nothing more to run.
+   * own (an event evaluator, a buffer conflict; device null), said by the `error` just
+   * before: every device comes to rest on the path, with nothing more to run. `what` says
+   * in a few words what stopped it.
    */
-  | { type: 'streamStopped'; device: string | null }
+  | { type: 'streamStopped'; device: string | null; what: string }
   /** reconnect() re-opened every link: the job can resume from `resumeFrom` (resumeJob()) or be dropped (discardJob()). */
   | { type: 'reconnected'; report: RecoveryReport };
 
@@ -497,9 +498,9 @@ export class Runtime {
   }
 
   private onStreamer(e: StreamerEvent): void {
-    if (e.type === 'conflict') this.emit({ type: 'error', error: new MaxlError('BUFFER_CONFLICT', e.message) });
+    if (e.type === 'conflict') this.onConflict(e.error);
     else if (e.type === 'refused') this.onRefused(e);
-    else if (e.type === 'failed') this.stopStream(null, e.error);
+    else if (e.type === 'failed') this.stopStream(null, e.error, 'an event evaluator failed, and streaming stopped');
     else if (e.type === 'idle') this.emit({ type: 'idle' });
   }
 
@@ -521,7 +522,19 @@ export class Runtime {
     this.stopStream(
       e.device,
       new MaxlError('DEVICE_REFUSED', `${e.device}: ${e.message.type} ${what}. Streaming stopped: every device comes to rest on the path. Reconnect, then resume the job from there.`),
+      `${e.device} refused a segment, and streaming stopped`,
     );
+  }
+
+  /**
+   * The streamer met a buffer conflict: it has planned the machine to rest and sends
+   * nothing past that point (its waits for the path's end reject with the conflict).
+   * The stream has stopped as after a refusal, but the devices brake along the planned
+   * path instead of running out of timing, so the streamer is not stopped here.
+   */
+  private onConflict(error: MaxlError): void {
+    this.emit({ type: 'error', error });
+    this.emit({ type: 'streamStopped', device: null, what: 'a buffer conflict stopped the stream, and the machine brakes to rest on the path' });
   }
 
   /**
@@ -529,7 +542,7 @@ export class Runtime {
    * it together and brake along the geometry they hold, to rest on the path. One
    * error says why; waits for the job's end (whenIdle) reject with it: it will not end.
    */
-  private stopStream(device: string | null, error: MaxlError): void {
+  private stopStream(device: string | null, error: MaxlError, what: string): void {
     if (this.streamStopped) return;
     this.streamStopped = true;
     if (!this.stopRecord) {
@@ -538,7 +551,7 @@ export class Runtime {
     }
     this.streamer?.stop(error);
     this.emit({ type: 'error', error });
-    this.emit({ type: 'streamStopped', device });
+    this.emit({ type: 'streamStopped', device, what });
   }
   private streamStopped = false;
   /** The error that stopped the stream (a refusal, a failing evaluator), for whenIdle() until the job resumes. */
@@ -558,6 +571,7 @@ export class Runtime {
         'DEVICE_REFUSED',
         `${device}: its clock jumped (micros() leapt or ran backwards mid-job); it takes no more timing. Streaming stopped: every device comes to rest on the path. Reconnect, then resume the job from there.`,
       ),
+      `${device}'s clock jumped, and streaming stopped`,
     );
   }
 

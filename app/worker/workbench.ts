@@ -385,11 +385,9 @@ export class Workbench implements ToolContext {
       const words = errorWords(e.error);
       this.lastError = words.message;
       this.log('error', words.code, words.message);
-      // The streamer brakes the machine to rest on the path and streams nothing more: the job cannot go on.
-      if (e.error.code === 'BUFFER_CONFLICT') this.stoppedByItself('a buffer conflict stopped the stream, and the machine brakes to rest on the path');
     } else if (e.type === 'streamStopped') {
       // The machine rests on the path with nothing more to run, even if no device reports a stop.
-      this.stoppedByItself(e.device ? `${e.device} refused a segment, and streaming stopped` : 'streaming stopped');
+      this.stoppedByItself(e.what);
     } else if (e.type === 'device') {
       this.devices.touch();
       if (e.state === 'lost' || e.state === 'rebooted') {

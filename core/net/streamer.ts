@@ -129,7 +129,7 @@ const LATE_FRAME_ODDS = 1e-3;
 const MAX_COVERED_RESENDS = 4;
 
 export type StreamerEvent =
-  | { type: 'conflict'; message: string }
+  | { type: 'conflict'; error: MaxlError }
   | { type: 'refused'; device: string; reason: string; detail: number; message: Message }
   /** The pump could not go on: an event evaluator threw or returned a non-number while its segment was locked. */
   | { type: 'failed'; error: MaxlError }
@@ -316,12 +316,7 @@ export class Streamer {
    * wait for idle rejects with it now and later: the job will not run to its end.
    */
   stop(reason?: Error): void {
-    if (reason && !this.stopReason) {
-      this.stopReason = reason;
-      const waiters = this.idleWaiters;
-      this.idleWaiters = [];
-      for (const w of waiters) w.reject(reason);
-    }
+    if (reason) this.endPathWith(reason);
     this.running = false;
     this.unsubscribe?.();
     this.unsubscribe = null;
@@ -335,6 +330,15 @@ export class Streamer {
     const moving = this.queue.transmittedEnd_us > now;
     const waiting = this.queue.untransmittedCount > 0 && this.holdAt !== this.queue.peekUntransmitted();
     return !moving && !waiting;
+  }
+
+  /** Nothing more of the path will run, for `reason`: waits for its end (whenIdle) reject with it, now and from now on. */
+  private endPathWith(reason: Error): void {
+    if (this.stopReason) return;
+    this.stopReason = reason;
+    const waiters = this.idleWaiters;
+    this.idleWaiters = [];
+    for (const w of waiters) w.reject(reason);
   }
 
   /** Resolves once the machine is idle (or held and at rest). */
@@ -777,13 +781,16 @@ export class Streamer {
 
   private conflict(next: Segment): void {
     const capacity = Math.min(...this.devices.map((d) => d.binding.capacity));
-    this.onEvent({
-      type: 'conflict',
-      message:
-        `buffer conflict: segment ${next.id} (${next.length.toFixed(3)} mm at up to ${Math.sqrt(next.cruise2).toFixed(1)} mm/s) ` +
+    const error = new MaxlError(
+      'BUFFER_CONFLICT',
+      `buffer conflict: segment ${next.id} (${next.length.toFixed(3)} mm at up to ${Math.sqrt(next.cruise2).toFixed(1)} mm/s) ` +
         `needs more segments ahead than a device's queue of ${capacity} holds, to stay on time and still be able to brake. ` +
         `The machine is brought to rest. Use longer segments or a lower speed.`,
-    });
+    );
+    this.onEvent({ type: 'conflict', error });
     this.holdAt = this.queue.brakeToRest() ?? this.holdAt;
+    // The pump goes on only to send the planned brake: the rest of the path will not run, so a
+    // wait for its end rejects with the conflict (it once resolved at rest, as if the job were done).
+    this.endPathWith(error);
   }
 }
